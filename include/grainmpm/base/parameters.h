@@ -1,0 +1,280 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_base_parameters_h
+#define grainmpm_base_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * What a face of the background box does to material that reaches it.
+   */
+  enum class BoundaryType
+  {
+    free_slip, ///< unilateral, frictionless rigid wall
+    no_slip,   ///< the grid velocity is set to zero
+    friction,  ///< unilateral rigid wall with Coulomb friction
+    open       ///< nothing; particles that leave are removed and counted
+  };
+
+  /**
+   * The condition on one face of the box.
+   */
+  struct BoundaryCondition
+  {
+    BoundaryType type                 = BoundaryType::free_slip;
+    double       friction_coefficient = 0.;
+  };
+
+  /**
+   * Subsection "Background grid": a box of Q1 cells.
+   */
+  template <int dim>
+  struct BackgroundGridParameters
+  {
+    Point<dim>                lower_corner;
+    Point<dim>                upper_corner;
+    std::vector<unsigned int> n_cells;
+    std::string               boundary_conditions_text;
+
+    /** Parsed from boundary_conditions_text: faces x-, x+, y-, y+, z-, z+. */
+    std::array<BoundaryCondition, 2 * dim> boundary_conditions;
+
+    BackgroundGridParameters();
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
+   * The two-dimensional idealisation.
+   */
+  enum class TwoDimensionalModel
+  {
+    plane_strain,
+    plane_stress
+  };
+
+  /**
+   * Subsection "Physics".
+   */
+  template <int dim>
+  struct PhysicsParameters
+  {
+    Tensor<1, dim>      gravity;
+    std::string         two_dimensional_model_text = "plane strain";
+    TwoDimensionalModel two_dimensional_model =
+      TwoDimensionalModel::plane_strain;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
+   * One named material in subsection "Materials".
+   */
+  struct MaterialParameters
+  {
+    std::string name;
+    std::string constitutive_model = "linear elastic";
+    double      density            = 1.;
+    double      youngs_modulus     = 1.;
+    double      poissons_ratio     = 0.3;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check() const;
+  };
+
+  /**
+   * The geometric shapes a grain can have.
+   */
+  enum class GrainShape
+  {
+    disk,
+    rectangle,
+    polygon,
+    sphere,
+    box
+  };
+
+  /**
+   * One grain, from a "Grain N" subsection or a line of the grain list file.
+   */
+  template <int dim>
+  struct GrainParameters
+  {
+    /** Where the grain was described, for error messages. */
+    std::string             source;
+    std::string             shape_text = "disk";
+    GrainShape              shape      = GrainShape::disk;
+    Point<dim>              centre;
+    double                  radius = 0.1;
+    Tensor<1, dim>          size;
+    double                  rotation = 0.;
+    std::string             vertices_text;
+    std::vector<Point<dim>> vertices;
+    std::string             material;
+    std::string             initial_velocity;
+    bool                    rigid = false;
+    std::string             prescribed_velocity;
+    unsigned int            material_index = 0;
+
+    GrainParameters();
+    void
+    declare(ParameterHandler &prm);
+    /** Convert the texts to enums and vertex lists; check the geometry. */
+    void
+    check(const std::string &prefix);
+    /** True if @p point lies strictly inside the grain's shape. */
+    bool
+    contains(const Point<dim> &point) const;
+    /** The corners of an axis-aligned box that contains the shape. */
+    std::pair<Point<dim>, Point<dim>>
+    bounding_box() const;
+  };
+
+  /**
+   * The contact models of DESIGN.md section 5.
+   */
+  enum class ContactModel
+  {
+    none,
+    frictionless,
+    coulomb_friction
+  };
+
+  /**
+   * Subsection "Contact".
+   */
+  struct ContactParameters
+  {
+    std::string  model_text           = "frictionless";
+    ContactModel model                = ContactModel::frictionless;
+    double       friction_coefficient = 0.;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
+   * Order of the explicit stress update.
+   */
+  enum class StressUpdate
+  {
+    usf,
+    musl
+  };
+
+  /**
+   * Subsection "Time stepping".
+   */
+  struct TimeSteppingParameters
+  {
+    std::string  scheme                  = "explicit leapfrog";
+    std::string  stress_update_text      = "USF";
+    StressUpdate stress_update           = StressUpdate::usf;
+    double       end_time                = 1.;
+    double       time_step               = 0.;
+    double       cfl_number              = 0.25;
+    std::string  velocity_update         = "FLIP";
+    double       flip_fraction           = 1.;
+    unsigned int maximum_number_of_steps = 100000000;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
+   * Subsection "Output".
+   */
+  struct OutputParameters
+  {
+    std::string directory           = "results";
+    double      interval            = 0.1;
+    bool        write_particles     = true;
+    bool        write_grid          = true;
+    bool        write_grain_history = true;
+    bool        test_mode           = false;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check() const;
+  };
+
+  /**
+   * All run-time parameters, one struct per subsection of the parameter
+   * file (DESIGN.md section 6). Handed to the simulator as a const reference.
+   */
+  template <int dim>
+  struct Parameters
+  {
+    BackgroundGridParameters<dim>     grid;
+    PhysicsParameters<dim>            physics;
+    std::vector<MaterialParameters>   materials;
+    std::string                       grain_list_file;
+    std::vector<GrainParameters<dim>> grains;
+    unsigned int                      particles_per_cell = 2;
+    ContactParameters                 contact;
+    TimeSteppingParameters            time_stepping;
+    OutputParameters                  output;
+
+    /**
+     * Declare every entry. @p material_names and @p grain_names are the
+     * subsections found in the file (see find_subsections()).
+     */
+    void
+    declare(ParameterHandler               &prm,
+            const std::vector<std::string> &material_names,
+            const std::vector<std::string> &grain_names);
+
+    /**
+     * Declare, parse @p filename and check. Throws InputError or the
+     * deal.II exception of a pattern mismatch (which names the entry).
+     */
+    void
+    parse(const std::string &filename, ParameterHandler &prm);
+
+    /**
+     * Checks that involve several entries: material names, grains inside
+     * the grid, the grain list file.
+     */
+    void
+    check();
+  };
+
+  /**
+   * The names of the subsections nested directly in subsection @p parent of
+   * the parameter file @p filename (following `include` lines). Used to
+   * declare "any number" of materials and grains before parsing.
+   */
+  std::vector<std::string>
+  find_subsections(const std::string &filename, const std::string &parent);
+
+  /**
+   * Read only the entry "Dimension" of @p filename.
+   */
+  unsigned int
+  read_dimension(const std::string &filename);
+} // namespace grainmpm
+
+#endif

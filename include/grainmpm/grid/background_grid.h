@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_grid_background_grid_h
+#define grainmpm_grid_background_grid_h
+
+#include <grainmpm/base/parameters.h>
+
+#include <deal.II/base/index_set.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/mapping_cartesian.h>
+
+#include <vector>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * The background grid of the material point method: a box of equal,
+   * axis-aligned cells on a `parallel::distributed::Triangulation`, the
+   * Q1 shape functions of an `FE_Q<dim>(1)` on a `DoFHandler`, and the
+   * flat tables the transfers need (DESIGN.md section 9): the node numbers
+   * of each active cell, and for each node the box faces it lies on.
+   *
+   * Nodes are numbered by the local index of their DoF among the locally
+   * relevant DoFs, so that all per-node arrays are plain vectors.
+   */
+  template <int dim>
+  class BackgroundGrid
+  {
+  public:
+    /** Number of nodes of a cell. */
+    static constexpr unsigned int nodes_per_cell = 1U << dim;
+
+    BackgroundGrid(const BackgroundGridParameters<dim> &parameters,
+                   const MPI_Comm                       communicator);
+
+    /** The triangulation (boundary ids 0..2dim-1 are x-, x+, y-, ...). */
+    const parallel::distributed::Triangulation<dim> &
+    get_triangulation() const;
+
+    /** The DoF handler of the scalar Q1 element: one DoF per node. */
+    const DoFHandler<dim> &
+    get_dof_handler() const;
+
+    /** The mapping used by the particle handler. */
+    const Mapping<dim> &
+    get_mapping() const;
+
+    /** Number of locally relevant nodes. */
+    unsigned int
+    n_nodes() const;
+
+    /**
+     * The local node numbers of the vertices of the active cell with index
+     * @p active_cell_index, in deal.II vertex order.
+     */
+    const unsigned int *
+    cell_nodes(const unsigned int active_cell_index) const;
+
+    /** Position of local node @p node. */
+    const Point<dim> &
+    node_position(const unsigned int node) const;
+
+    /**
+     * A bit mask of the box faces local node @p node lies on: bit f is set
+     * for face f (x-, x+, y-, y+, z-, z+).
+     */
+    unsigned int
+    node_faces(const unsigned int node) const;
+
+    /** The local nodes on the boundary of the box. */
+    const std::vector<unsigned int> &
+    boundary_nodes() const;
+
+    /** Cell size in each direction. */
+    const Tensor<1, dim> &
+    cell_size() const;
+
+    /** The smallest cell size. */
+    double
+    minimum_cell_size() const;
+
+    /** The box corners. */
+    const Point<dim> &
+    lower_corner() const;
+    const Point<dim> &
+    upper_corner() const;
+
+    /** The condition on face @p face. */
+    const BoundaryCondition &
+    boundary_condition(const unsigned int face) const;
+
+    /** The locally relevant DoFs (= nodes). */
+    const IndexSet &
+    locally_relevant_nodes() const;
+
+  private:
+    const BackgroundGridParameters<dim>      &parameters;
+    parallel::distributed::Triangulation<dim> triangulation;
+    FE_Q<dim>                                 fe;
+    DoFHandler<dim>                           dof_handler;
+    MappingCartesian<dim>                     mapping;
+    IndexSet                                  locally_relevant_dofs;
+    Tensor<1, dim>                            cell_extent;
+    std::vector<unsigned int>                 cell_node_table;
+    std::vector<Point<dim>>                   node_positions;
+    std::vector<unsigned int>                 node_face_masks;
+    std::vector<unsigned int>                 boundary_node_list;
+  };
+
+
+
+  template <int dim>
+  inline const unsigned int *
+  BackgroundGrid<dim>::cell_nodes(const unsigned int active_cell_index) const
+  {
+    return cell_node_table.data() + nodes_per_cell * active_cell_index;
+  }
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_materials_constitutive_model_h
+#define grainmpm_materials_constitutive_model_h
+
+#include <grainmpm/base/parameters.h>
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <memory>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * The interface of a constitutive model: a pure function from the old
+   * stress, the history and the increment of the displacement gradient
+   * over a step (dt times the velocity gradient) to the new stress and
+   * history (DESIGN.md section 5). Stresses are three-dimensional in every
+   * dimension so that plane strain keeps sigma_zz.
+   */
+  template <int dim>
+  class ConstitutiveModel
+  {
+  public:
+    virtual ~ConstitutiveModel() = default;
+
+    /**
+     * The stress after an increment @p displacement_gradient_increment
+     * (dt grad v, dimensionless) from the state @p stress. @p plastic_strain
+     * is the history variable, updated in place by inelastic models.
+     */
+    virtual SymmetricTensor<2, 3>
+    update_stress(const SymmetricTensor<2, 3> &stress,
+                  const Tensor<2, dim>        &displacement_gradient_increment,
+                  double                      &plastic_strain) const = 0;
+
+    /**
+     * Elastic strain energy per unit volume stored with stress @p stress,
+     * 1/2 sigma : C^{-1} : sigma. Units: stress.
+     */
+    virtual double
+    strain_energy_density(const SymmetricTensor<2, 3> &stress) const = 0;
+
+    /** The largest wave speed, for the CFL condition. Units: length/time. */
+    virtual double
+    wave_speed() const = 0;
+
+    /** Mass density. */
+    virtual double
+    density() const = 0;
+  };
+
+  /**
+   * Create the model named in @p material for the two-dimensional
+   * idealisation @p model (ignored in 3D).
+   */
+  template <int dim>
+  std::unique_ptr<ConstitutiveModel<dim>>
+  create_constitutive_model(const MaterialParameters &material,
+                            const TwoDimensionalModel model);
+} // namespace grainmpm
+
+#endif

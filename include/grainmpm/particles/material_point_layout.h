@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_particles_material_point_layout_h
+#define grainmpm_particles_material_point_layout_h
+
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * The layout of the properties every material point carries in the
+   * property pool of the `Particles::ParticleHandler`: the only place that
+   * knows raw property indices. Everything else uses the accessors.
+   *
+   * The stress is always stored as a three-dimensional symmetric tensor
+   * (6 numbers, SymmetricTensor<2,3> unrolled order xx, yy, zz, xy, xz, yz)
+   * so that the out-of-plane stress of plane strain is kept in 2D.
+   */
+  template <int dim>
+  struct MaterialPointLayout
+  {
+    /** Mass of the point; constant. Units: mass. */
+    static constexpr unsigned int mass = 0;
+    /** Current volume (area per unit thickness in 2D). */
+    static constexpr unsigned int volume = 1;
+    /** Volume at t = 0. */
+    static constexpr unsigned int initial_volume = 2;
+    /** Grain the point belongs to (stored as a double). */
+    static constexpr unsigned int grain = 3;
+    /** First of dim velocity components. */
+    static constexpr unsigned int velocity = 4;
+    /** First of 6 stress components. */
+    static constexpr unsigned int stress = velocity + dim;
+    /** First of dim*dim components of the deformation gradient F. */
+    static constexpr unsigned int deformation_gradient = stress + 6;
+    /** History: equivalent plastic strain (zero for elastic materials). */
+    static constexpr unsigned int plastic_strain =
+      deformation_gradient + dim * dim;
+    /** Number of properties per point. */
+    static constexpr unsigned int n_properties = plastic_strain + 1;
+
+    static_assert(n_properties == 11 + dim + dim * dim,
+                  "the layout must stay dense");
+
+    static Tensor<1, dim>
+    get_velocity(const ArrayView<const double> &properties)
+    {
+      Tensor<1, dim> v;
+      for (unsigned int d = 0; d < dim; ++d)
+        v[d] = properties[velocity + d];
+      return v;
+    }
+
+    static void
+    set_velocity(const Tensor<1, dim> &v, const ArrayView<double> &properties)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        properties[velocity + d] = v[d];
+    }
+
+    static SymmetricTensor<2, 3>
+    get_stress(const ArrayView<const double> &properties)
+    {
+      SymmetricTensor<2, 3> sigma;
+      for (unsigned int c = 0; c < 6; ++c)
+        sigma.access_raw_entry(c) = properties[stress + c];
+      return sigma;
+    }
+
+    static void
+    set_stress(const SymmetricTensor<2, 3> &sigma,
+               const ArrayView<double>     &properties)
+    {
+      for (unsigned int c = 0; c < 6; ++c)
+        properties[stress + c] = sigma.access_raw_entry(c);
+    }
+
+    static Tensor<2, dim>
+    get_deformation_gradient(const ArrayView<const double> &properties)
+    {
+      Tensor<2, dim> F;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          F[i][j] = properties[deformation_gradient + dim * i + j];
+      return F;
+    }
+
+    static void
+    set_deformation_gradient(const Tensor<2, dim>    &F,
+                             const ArrayView<double> &properties)
+    {
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          properties[deformation_gradient + dim * i + j] = F[i][j];
+    }
+
+    static unsigned int
+    get_grain(const ArrayView<const double> &properties)
+    {
+      return static_cast<unsigned int>(properties[grain]);
+    }
+  };
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_postprocess_output_writer_h
+#define grainmpm_postprocess_output_writer_h
+
+#include <grainmpm/base/parameters.h>
+#include <grainmpm/grid/background_grid.h>
+#include <grainmpm/time_integration/explicit_leapfrog.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * Principal stress difference of @p stress: in 2D the in-plane
+   * sigma_1 - sigma_2 = sqrt((s_xx - s_yy)^2 + 4 s_xy^2) that photoelastic
+   * fringes show, in 3D the largest minus the smallest principal stress.
+   */
+  template <int dim>
+  double
+  principal_stress_difference(const SymmetricTensor<2, 3> &stress);
+
+  /** The von Mises equivalent stress sqrt(3/2 s:s) of @p stress. */
+  double
+  von_mises_stress(const SymmetricTensor<2, 3> &stress);
+
+  /**
+   * Writes the ParaView files of a run (DESIGN.md section 7):
+   * `particles.pvd` with `particles/particles_NNNNN.vtu` (position, grain,
+   * velocity, stress tensor, principal stress difference, von Mises stress,
+   * volume, plastic strain) and `grid.pvd` with `grid/grid_NNNNN.vtu`
+   * (nodal mass, centre-of-mass velocity, number of grains, contact flag).
+   * The .pvd records are members, rewritten after every output, so a run
+   * that stops keeps a valid time series of what was written.
+   */
+  template <int dim>
+  class OutputWriter
+  {
+  public:
+    OutputWriter(const OutputParameters    &parameters,
+                 const BackgroundGrid<dim> &grid);
+
+    /** Write the particles at @p time as output number @p index. */
+    void
+    write_particles(const Particles::ParticleHandler<dim> &particle_handler,
+                    const double                           time,
+                    const unsigned int                     index);
+
+    /** Write the grid fields of the last step of @p stepper. */
+    void
+    write_grid(const ExplicitLeapfrog<dim> &stepper,
+               const double                 time,
+               const unsigned int           index);
+
+  private:
+    const OutputParameters                     &parameters;
+    const BackgroundGrid<dim>                  &grid;
+    FESystem<dim>                               vector_fe;
+    DoFHandler<dim>                             vector_dof_handler;
+    std::vector<std::pair<double, std::string>> particle_records;
+    std::vector<std::pair<double, std::string>> grid_records;
+  };
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_simulator_h
+#define grainmpm_simulator_h
+
+#include <grainmpm/base/parameters.h>
+#include <grainmpm/grid/background_grid.h>
+#include <grainmpm/materials/constitutive_model.h>
+#include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/postprocess/energy_history.h>
+#include <grainmpm/postprocess/grain_history.h>
+#include <grainmpm/postprocess/output_writer.h>
+#include <grainmpm/time_integration/explicit_leapfrog.h>
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * A grainmpm run: owns the grid, the material points, the materials, the
+   * time stepper and the writers; run() reads like the algorithm of
+   * DESIGN.md section 2.
+   */
+  template <int dim>
+  class Simulator
+  {
+  public:
+    /**
+     * Set up a run from parsed @p parameters. @p prm is the handler they
+     * were read with (written to parameters.prm) and @p input_file the
+     * file itself (copied to original.prm).
+     */
+    Simulator(const Parameters<dim>  &parameters,
+              const ParameterHandler &prm,
+              const std::string      &input_file,
+              const MPI_Comm          communicator);
+
+    /** Advance to the end time, writing output on the way. */
+    void
+    run();
+
+  private:
+    /** Time step from the CFL condition or the fixed value. */
+    double
+    compute_time_step(const double max_speed) const;
+
+    /** Particles, grid, .pvd records, grains.csv and the progress line. */
+    void
+    write_output(const unsigned int step, const double time, const double dt);
+
+    const Parameters<dim> &parameters;
+    const MPI_Comm         communicator;
+    ConditionalOStream     pcout;
+    TimerOutput            timer;
+
+    BackgroundGrid<dim>                                  grid;
+    Particles::ParticleHandler<dim>                      particle_handler;
+    std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
+    std::vector<GrainInfo<dim>>                          grains;
+    std::unique_ptr<ExplicitLeapfrog<dim>>               stepper;
+    std::unique_ptr<OutputWriter<dim>>                   output_writer;
+    std::unique_ptr<EnergyHistory<dim>>                  energy_history;
+    std::unique_ptr<GrainHistory<dim>>                   grain_history;
+
+    unsigned int          n_outputs = 0;
+    types::particle_index n_removed = 0;
+    EnergySummary<dim>    initial_energy;
+    EnergySummary<dim>    current_energy;
+    double                minimum_energy = 0.;
+    double                maximum_energy = 0.;
+  };
+
+  /**
+   * Read @p filename for dimension @p dim and run it: what `grainmpm FILE`
+   * does.
+   */
+  template <int dim>
+  void
+  run(const std::string &filename, const MPI_Comm communicator);
+} // namespace grainmpm
+
+#endif

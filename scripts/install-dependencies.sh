@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Install everything grainmpm needs from Debian 12 (bookworm) packages.
+# Idempotent: packages already present are skipped; safe to run repeatedly.
+# Must run as root (or through sudo) on a fresh machine.
+set -euo pipefail
+
+packages=(
+  libdeal.ii-dev   # deal.II 9.4.1 with Trilinos, p4est, PETSc, Open MPI, Boost, TBB
+  cmake
+  make
+  g++
+  ccache
+  numdiff
+  clang-format-16
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-dependencies: all packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  SUDO="sudo"
+fi
+
+echo "install-dependencies: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,912 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameters.h>
+
+#include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace grainmpm
+{
+  namespace
+  {
+    const std::array<std::string, 6> face_names = {
+      {"x-", "x+", "y-", "y+", "z-", "z+"}};
+
+    std::string
+    strip_comment(const std::string &line)
+    {
+      return Utilities::trim(line.substr(0, line.find('#')));
+    }
+
+    std::vector<double>
+    parse_numbers(const std::string &text,
+                  const std::string &entry,
+                  const std::string &separator = ",")
+    {
+      std::vector<double> numbers;
+      for (const auto &item : Utilities::split_string_list(text, separator))
+        {
+          try
+            {
+              numbers.push_back(Utilities::string_to_double(item));
+            }
+          catch (...)
+            {
+              throw InputError(entry,
+                               "'" + item + "' in '" + text +
+                                 "' is not a number.");
+            }
+        }
+      return numbers;
+    }
+
+    template <int dim>
+    std::string
+    point_to_string(const Point<dim> &point)
+    {
+      std::ostringstream out;
+      out << '(';
+      for (unsigned int d = 0; d < dim; ++d)
+        out << (d > 0 ? ", " : "") << point[d];
+      out << ')';
+      return out.str();
+    }
+  } // namespace
+
+
+
+  // ---------------------------------------------------------------- grid
+
+  template <int dim>
+  BackgroundGridParameters<dim>::BackgroundGridParameters()
+    : n_cells(dim, 20)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      upper_corner[d] = 1.;
+    for (unsigned int f = 0; f < 2 * dim; ++f)
+      boundary_conditions_text +=
+        (f > 0 ? ", " : "") + face_names[f] + ": free slip";
+  }
+
+
+
+  template <int dim>
+  void
+  BackgroundGridParameters<dim>::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Background grid");
+    prm.add_parameter("Lower corner",
+                      lower_corner,
+                      "The corner of the box-shaped background grid with the "
+                      "smallest coordinates, one number per direction. "
+                      "Units: length.");
+    prm.add_parameter("Upper corner",
+                      upper_corner,
+                      "The corner of the box-shaped background grid with the "
+                      "largest coordinates. Units: length.");
+    prm.add_parameter("Number of cells",
+                      n_cells,
+                      "Number of Q1 cells in each direction, one integer per "
+                      "direction. Cells should be square (cubes): the time "
+                      "step and the contact normals use the smallest cell "
+                      "size. Dimensionless.",
+                      Patterns::List(Patterns::Integer(1, 1 << 16), dim, dim));
+    prm.add_parameter(
+      "Boundary conditions",
+      boundary_conditions_text,
+      "What each face of the box does, as a comma-separated list of "
+      "'face: type' with face one of x-, x+, y-, y+ (z-, z+ in 3D) and type "
+      "one of 'free slip' (rigid frictionless wall that material can leave), "
+      "'no slip' (grid velocity zero at the face), 'friction MU' (rigid wall "
+      "with Coulomb friction coefficient MU) or 'open' (particles that leave "
+      "are removed and counted). Faces not listed are free slip. "
+      "Dimensionless.");
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  void
+  BackgroundGridParameters<dim>::check()
+  {
+    const std::string entry = "Background grid/";
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!(upper_corner[d] > lower_corner[d]))
+        throw InputError(entry + "Upper corner",
+                         "must be larger than the Lower corner in every "
+                         "direction, but in direction " +
+                           std::to_string(d) + " it is " +
+                           std::to_string(upper_corner[d]) +
+                           " <= " + std::to_string(lower_corner[d]) + ".");
+
+    for (auto &condition : boundary_conditions)
+      condition = BoundaryCondition();
+    const std::string bc_entry =
+      entry + "Boundary conditions = " + boundary_conditions_text;
+    for (const auto &item :
+         Utilities::split_string_list(boundary_conditions_text, ','))
+      {
+        const auto parts = Utilities::split_string_list(item, ':');
+        if (parts.size() != 2)
+          throw InputError(bc_entry,
+                           "each item must read 'face: type', but '" + item +
+                             "' does not.");
+        unsigned int face = 2 * dim;
+        for (unsigned int f = 0; f < 2 * dim; ++f)
+          if (parts[0] == face_names[f])
+            face = f;
+        if (face == 2 * dim)
+          throw InputError(bc_entry,
+                           "unknown face '" + parts[0] + "' (use " +
+                             (dim == 2 ? "x-, x+, y-, y+" :
+                                         "x-, x+, y-, y+, z-, z+") +
+                             ").");
+        const auto         words = Utilities::split_string_list(parts[1], ' ');
+        BoundaryCondition &condition = boundary_conditions[face];
+        if (parts[1] == "free slip")
+          condition.type = BoundaryType::free_slip;
+        else if (parts[1] == "no slip")
+          condition.type = BoundaryType::no_slip;
+        else if (parts[1] == "open")
+          condition.type = BoundaryType::open;
+        else if (words.size() == 2 && words[0] == "friction")
+          {
+            condition.type = BoundaryType::friction;
+            condition.friction_coefficient =
+              parse_numbers(words[1], bc_entry)[0];
+            if (condition.friction_coefficient < 0.)
+              throw InputError(bc_entry,
+                               "the friction coefficient of face " + parts[0] +
+                                 " must not be negative.");
+          }
+        else
+          throw InputError(bc_entry,
+                           "unknown boundary type '" + parts[1] +
+                             "' for face " + parts[0] +
+                             " (use free slip, no slip, friction MU, open).");
+      }
+  }
+
+
+
+  // ------------------------------------------------------------- physics
+
+  template <int dim>
+  void
+  PhysicsParameters<dim>::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Physics");
+    prm.add_parameter("Gravity",
+                      gravity,
+                      "The gravitational acceleration vector, one component "
+                      "per direction. Units: length/time^2.");
+    prm.add_parameter(
+      "Two-dimensional model",
+      two_dimensional_model_text,
+      "The idealisation of a two-dimensional run: 'plane strain' (thick "
+      "grains, the out-of-plane strain is zero) or 'plane stress' (thin "
+      "disks such as photoelastic models). Ignored in 3D. Dimensionless.",
+      Patterns::Selection("plane strain|plane stress"));
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  void
+  PhysicsParameters<dim>::check()
+  {
+    two_dimensional_model = (two_dimensional_model_text == "plane stress") ?
+                              TwoDimensionalModel::plane_stress :
+                              TwoDimensionalModel::plane_strain;
+  }
+
+
+
+  // ----------------------------------------------------------- materials
+
+  void
+  MaterialParameters::declare(ParameterHandler &prm)
+  {
+    prm.add_parameter("Constitutive model",
+                      constitutive_model,
+                      "The stress update of this material: 'linear elastic' "
+                      "(hypoelastic, Jaumann-rotated). Dimensionless.",
+                      Patterns::Selection("linear elastic"));
+    prm.add_parameter("Density",
+                      density,
+                      "Mass density in the reference configuration. Must be "
+                      "positive. Units: mass/length^3 (mass/length^2 per "
+                      "unit thickness in 2D).",
+                      Patterns::Double(0.));
+    prm.add_parameter("Young's modulus",
+                      youngs_modulus,
+                      "Young's modulus E. Must be positive. Units: "
+                      "mass/(length time^2), i.e. stress.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Poisson's ratio",
+                      poissons_ratio,
+                      "Poisson's ratio nu, in (-1, 0.5). Dimensionless.",
+                      Patterns::Double(-1., 0.5));
+  }
+
+
+
+  void
+  MaterialParameters::check() const
+  {
+    const std::string entry = "Materials/" + name + "/";
+    if (!(density > 0.))
+      throw InputError(entry + "Density",
+                       "must be positive, but is " + std::to_string(density) +
+                         ".");
+    if (!(youngs_modulus > 0.))
+      throw InputError(entry + "Young's modulus",
+                       "must be positive, but is " +
+                         std::to_string(youngs_modulus) + ".");
+    if (!(poissons_ratio > -1. && poissons_ratio < 0.5))
+      throw InputError(entry + "Poisson's ratio",
+                       "must lie strictly between -1 and 0.5, but is " +
+                         std::to_string(poissons_ratio) + ".");
+  }
+
+
+
+  // -------------------------------------------------------------- grains
+
+  template <int dim>
+  GrainParameters<dim>::GrainParameters()
+  {
+    shape_text = (dim == 2 ? "disk" : "sphere");
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        centre[d] = 0.5;
+        size[d]   = 0.2;
+        initial_velocity += std::string(d > 0 ? "; " : "") + "0";
+      }
+    prescribed_velocity = initial_velocity;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainParameters<dim>::declare(ParameterHandler &prm)
+  {
+    prm.add_parameter("Shape",
+                      shape_text,
+                      "The shape of the grain: 'disk', 'rectangle' or "
+                      "'polygon' in 2D, 'sphere' or 'box' in 3D. "
+                      "Dimensionless.",
+                      Patterns::Anything());
+    prm.add_parameter("Centre",
+                      centre,
+                      "Centre of the disk, sphere, rectangle or box. "
+                      "Units: length.");
+    prm.add_parameter("Radius",
+                      radius,
+                      "Radius of a disk or sphere. Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Size",
+                      size,
+                      "Edge lengths of a rectangle or box, one per "
+                      "direction (before rotation). Units: length.");
+    prm.add_parameter("Rotation",
+                      rotation,
+                      "Counter-clockwise rotation of a rectangle or box about "
+                      "its centre (about the z axis in 3D). Units: degrees.");
+    prm.add_parameter("Vertices",
+                      vertices_text,
+                      "Vertices of a polygon in counter-clockwise or "
+                      "clockwise order, as 'x1, y1; x2, y2; ...'. "
+                      "Units: length.");
+    prm.add_parameter("Material",
+                      material,
+                      "Name of the material (a subsection of 'Materials') "
+                      "the grain is made of. Dimensionless.");
+    prm.add_parameter("Initial velocity",
+                      initial_velocity,
+                      "Initial velocity of the grain's material points, one "
+                      "expression of the coordinates x, y (, z) per "
+                      "component, separated by ';' (deal.II FunctionParser "
+                      "syntax, e.g. '0.1; -0.2*x'). Units: length/time.");
+    prm.add_parameter("Rigid",
+                      rigid,
+                      "If true, the grain is a rigid body that moves with the "
+                      "prescribed velocity and acts on other grains through "
+                      "contact as a body of infinite mass (platens, pistons, "
+                      "impactors).");
+    prm.add_parameter(
+      "Prescribed velocity",
+      prescribed_velocity,
+      "Velocity of a rigid grain, one expression of x, y (, z) and the "
+      "time t per component separated by ';'. Ignored unless Rigid is "
+      "true. Units: length/time.");
+  }
+
+
+
+  template <int dim>
+  void
+  GrainParameters<dim>::check(const std::string &prefix)
+  {
+    const std::string entry = prefix + "Shape = " + shape_text;
+    if (shape_text == "disk")
+      shape = GrainShape::disk;
+    else if (shape_text == "rectangle")
+      shape = GrainShape::rectangle;
+    else if (shape_text == "polygon")
+      shape = GrainShape::polygon;
+    else if (shape_text == "sphere")
+      shape = GrainShape::sphere;
+    else if (shape_text == "box")
+      shape = GrainShape::box;
+    else
+      throw InputError(entry,
+                       "unknown shape (use " +
+                         std::string(dim == 2 ? "disk, rectangle or polygon" :
+                                                "sphere or box") +
+                         ").");
+
+    const bool is_2d_shape =
+      (shape == GrainShape::disk || shape == GrainShape::rectangle ||
+       shape == GrainShape::polygon);
+    if (is_2d_shape != (dim == 2))
+      throw InputError(entry,
+                       "this shape does not exist in " + std::to_string(dim) +
+                         "D (use " +
+                         std::string(dim == 2 ? "disk, rectangle or polygon" :
+                                                "sphere or box") +
+                         ").");
+
+    if ((shape == GrainShape::disk || shape == GrainShape::sphere) &&
+        !(radius > 0.))
+      throw InputError(prefix + "Radius", "must be positive.");
+    if (shape == GrainShape::rectangle || shape == GrainShape::box)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (!(size[d] > 0.))
+          throw InputError(prefix + "Size",
+                           "every edge length must be positive.");
+
+    vertices.clear();
+    if (shape == GrainShape::polygon)
+      {
+        for (const auto &vertex :
+             Utilities::split_string_list(vertices_text, ';'))
+          {
+            const auto coordinates = parse_numbers(vertex, prefix + "Vertices");
+            if (coordinates.size() != dim)
+              throw InputError(prefix + "Vertices = " + vertices_text,
+                               "each vertex needs " + std::to_string(dim) +
+                                 " coordinates separated by ','.");
+            Point<dim> point;
+            for (unsigned int d = 0; d < dim; ++d)
+              point[d] = coordinates[d];
+            vertices.push_back(point);
+          }
+        if (vertices.size() < 3)
+          throw InputError(prefix + "Vertices = " + vertices_text,
+                           "a polygon needs at least three vertices.");
+      }
+
+    if (Utilities::split_string_list(initial_velocity, ';').size() != dim)
+      throw InputError(prefix + "Initial velocity = " + initial_velocity,
+                       "needs " + std::to_string(dim) +
+                         " expressions separated by ';'.");
+    if (rigid &&
+        Utilities::split_string_list(prescribed_velocity, ';').size() != dim)
+      throw InputError(prefix + "Prescribed velocity = " + prescribed_velocity,
+                       "needs " + std::to_string(dim) +
+                         " expressions separated by ';'.");
+  }
+
+
+
+  template <int dim>
+  bool
+  GrainParameters<dim>::contains(const Point<dim> &point) const
+  {
+    switch (shape)
+      {
+        case GrainShape::disk:
+        case GrainShape::sphere:
+          return point.distance_square(centre) < radius * radius;
+
+        case GrainShape::rectangle:
+        case GrainShape::box:
+          {
+            // Rotate the point back into the frame of the unrotated box.
+            Tensor<1, dim> local = point - centre;
+            if (rotation != 0.)
+              {
+                const double angle = -rotation * M_PI / 180.;
+                const double x     = local[0];
+                const double y     = local[1];
+                local[0]           = std::cos(angle) * x - std::sin(angle) * y;
+                local[1]           = std::sin(angle) * x + std::cos(angle) * y;
+              }
+            for (unsigned int d = 0; d < dim; ++d)
+              if (!(std::abs(local[d]) < 0.5 * size[d]))
+                return false;
+            return true;
+          }
+
+        case GrainShape::polygon:
+          {
+            // Even-odd (ray casting) rule.
+            bool               inside = false;
+            const unsigned int n      = vertices.size();
+            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
+              {
+                const Point<dim> &a = vertices[i];
+                const Point<dim> &b = vertices[j];
+                if ((a[1] > point[1]) != (b[1] > point[1]))
+                  {
+                    const double x_cross =
+                      (b[0] - a[0]) * (point[1] - a[1]) / (b[1] - a[1]) + a[0];
+                    if (point[0] < x_cross)
+                      inside = !inside;
+                  }
+              }
+            return inside;
+          }
+      }
+    return false;
+  }
+
+
+
+  template <int dim>
+  std::pair<Point<dim>, Point<dim>>
+  GrainParameters<dim>::bounding_box() const
+  {
+    Point<dim> lower, upper;
+    switch (shape)
+      {
+        case GrainShape::disk:
+        case GrainShape::sphere:
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lower[d] = centre[d] - radius;
+              upper[d] = centre[d] + radius;
+            }
+          break;
+        case GrainShape::rectangle:
+        case GrainShape::box:
+          {
+            const double angle = rotation * M_PI / 180.;
+            const double c     = std::abs(std::cos(angle)),
+                         s     = std::abs(std::sin(angle));
+            Tensor<1, dim> half;
+            half[0] = 0.5 * (c * size[0] + s * size[1]);
+            half[1] = 0.5 * (s * size[0] + c * size[1]);
+            if (dim == 3)
+              half[dim - 1] = 0.5 * size[dim - 1];
+            lower = centre - half;
+            upper = centre + half;
+            break;
+          }
+        case GrainShape::polygon:
+          lower = upper = vertices[0];
+          for (const auto &vertex : vertices)
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                lower[d] = std::min(lower[d], vertex[d]);
+                upper[d] = std::max(upper[d], vertex[d]);
+              }
+          break;
+      }
+    return {lower, upper};
+  }
+
+
+
+  // ------------------------------------------------------------- contact
+
+  void
+  ContactParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    prm.add_parameter(
+      "Contact model",
+      model_text,
+      "How grains interact where they meet. 'none': all deformable grains "
+      "share one grid velocity field, so touching grains stick (classic "
+      "single-field MPM). 'frictionless': Bardenhagen-Brackbill-Sulsky "
+      "contact, every grain has its own field; no interpenetration, free "
+      "separation, no tangential force. 'Coulomb friction': the same with "
+      "Coulomb friction (stick/slip) of coefficient 'Friction coefficient'. "
+      "Dimensionless.",
+      Patterns::Selection("none|frictionless|Coulomb friction"));
+    prm.add_parameter("Friction coefficient",
+                      friction_coefficient,
+                      "Coulomb friction coefficient between grains, used by "
+                      "the 'Coulomb friction' model. Dimensionless.",
+                      Patterns::Double(0.));
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  ContactParameters::check()
+  {
+    if (model_text == "none")
+      model = ContactModel::none;
+    else if (model_text == "frictionless")
+      model = ContactModel::frictionless;
+    else
+      model = ContactModel::coulomb_friction;
+  }
+
+
+
+  // ------------------------------------------------------- time stepping
+
+  void
+  TimeSteppingParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.add_parameter("Scheme",
+                      scheme,
+                      "The time integration scheme: 'explicit leapfrog' "
+                      "(eqs. 7-10 of Cummins & Brackbill). Dimensionless.",
+                      Patterns::Selection("explicit leapfrog"));
+    prm.add_parameter(
+      "Stress update",
+      stress_update_text,
+      "Where in the explicit step the stress is updated: 'USF' (update "
+      "stress first, from the grid velocity of the particle-to-grid "
+      "transfer, as in eqs. 8-9) or 'MUSL' (after the particle update, from "
+      "the grid velocity remapped from the new particle momenta). "
+      "Dimensionless.",
+      Patterns::Selection("USF|MUSL"));
+    prm.add_parameter("End time",
+                      end_time,
+                      "The time at which the run stops. Units: time.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Time step",
+                      time_step,
+                      "A fixed time step. If zero, the step is chosen every "
+                      "step from the CFL number. Units: time.",
+                      Patterns::Double(0.));
+    prm.add_parameter(
+      "CFL number",
+      cfl_number,
+      "Used when Time step is zero: dt = CFL h / (c + max |v_p|) with h the "
+      "smallest cell size, c the largest dilatational wave speed of the "
+      "materials in use and v_p the particle velocities. Dimensionless.",
+      Patterns::Double(0., 10.));
+    prm.add_parameter(
+      "Particle velocity update",
+      velocity_update,
+      "How particles get their new velocity from the grid: 'FLIP' (add the "
+      "grid velocity change), 'PIC' (take the grid velocity) or 'blend' "
+      "(FLIP fraction alpha of FLIP, 1 - alpha of PIC). Dimensionless.",
+      Patterns::Selection("FLIP|PIC|blend"));
+    prm.add_parameter("FLIP fraction",
+                      flip_fraction,
+                      "The FLIP weight alpha of the 'blend' update. "
+                      "Dimensionless.",
+                      Patterns::Double(0., 1.));
+    prm.add_parameter("Maximum number of steps",
+                      maximum_number_of_steps,
+                      "The run stops after this many steps even if End time "
+                      "is not reached. Dimensionless.",
+                      Patterns::Integer(1));
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  TimeSteppingParameters::check()
+  {
+    stress_update =
+      (stress_update_text == "MUSL") ? StressUpdate::musl : StressUpdate::usf;
+    if (velocity_update == "FLIP")
+      flip_fraction = 1.;
+    else if (velocity_update == "PIC")
+      flip_fraction = 0.;
+    if (time_step == 0. && cfl_number == 0.)
+      throw InputError("Time stepping/CFL number",
+                       "must be positive when Time step is zero.");
+  }
+
+
+
+  // -------------------------------------------------------------- output
+
+  void
+  OutputParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.add_parameter("Output directory",
+                      directory,
+                      "Directory for all output (created if missing): "
+                      "particles.pvd, grid.pvd, energy.csv, grains.csv, "
+                      "original.prm and parameters.prm. Dimensionless.");
+    prm.add_parameter("Output interval",
+                      interval,
+                      "Simulated time between two graphical outputs and "
+                      "grain history rows. Zero writes every step. "
+                      "Units: time.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Write particles",
+                      write_particles,
+                      "Write particles.pvd and the particle .vtu files.");
+    prm.add_parameter("Write grid",
+                      write_grid,
+                      "Write grid.pvd and the grid .vtu files.");
+    prm.add_parameter("Write grain history",
+                      write_grain_history,
+                      "Write grains.csv (per grain centre of mass, velocity, "
+                      "angular velocity) at every output.");
+    prm.add_parameter("Test mode",
+                      test_mode,
+                      "Print only what is deterministic (no timings, no "
+                      "file names with paths) and a final summary, for the "
+                      "regression tests.");
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  OutputParameters::check() const
+  {
+    if (directory.empty())
+      throw InputError("Output/Output directory", "must not be empty.");
+  }
+
+
+
+  // ------------------------------------------------------------ aggregate
+
+  template <int dim>
+  void
+  Parameters<dim>::declare(ParameterHandler               &prm,
+                           const std::vector<std::string> &material_names,
+                           const std::vector<std::string> &grain_names)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "The space dimension of the run, 2 or 3. "
+                      "Dimensionless.");
+    grid.declare(prm);
+    physics.declare(prm);
+
+    materials.resize(material_names.size());
+    prm.enter_subsection("Materials");
+    for (unsigned int m = 0; m < material_names.size(); ++m)
+      {
+        materials[m].name = material_names[m];
+        prm.enter_subsection(material_names[m]);
+        materials[m].declare(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    grains.resize(grain_names.size());
+    prm.enter_subsection("Grains");
+    prm.add_parameter(
+      "Grain list file",
+      grain_list_file,
+      "Optional CSV file with one grain per line (for large assemblies), in "
+      "addition to the 'Grain N' subsections. Columns: shape, centre (" +
+        std::to_string(dim) + " numbers), radius, size (" +
+        std::to_string(dim) +
+        " numbers), rotation in degrees, material name, velocity (" +
+        std::to_string(dim) +
+        " numbers). Lines starting with # are comments. Relative paths are "
+        "relative to the working directory.");
+    for (unsigned int g = 0; g < grain_names.size(); ++g)
+      {
+        grains[g].source = "Grains/" + grain_names[g];
+        prm.enter_subsection(grain_names[g]);
+        grains[g].declare(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Material points");
+    prm.add_parameter("Particles per cell",
+                      particles_per_cell,
+                      "Number of material points per cell and direction in "
+                      "a regular arrangement (2 gives 4 per cell in 2D). "
+                      "Dimensionless.",
+                      Patterns::Integer(1, 10));
+    prm.leave_subsection();
+
+    contact.declare(prm);
+    time_stepping.declare(prm);
+    output.declare(prm);
+  }
+
+
+
+  template <int dim>
+  void
+  Parameters<dim>::parse(const std::string &filename, ParameterHandler &prm)
+  {
+    auto material_names = find_subsections(filename, "Materials");
+    auto grain_names    = find_subsections(filename, "Grains");
+    declare(prm, material_names, grain_names);
+    prm.parse_input(filename, "", false, true);
+    check();
+  }
+
+
+
+  template <int dim>
+  void
+  Parameters<dim>::check()
+  {
+    grid.check();
+    physics.check();
+    contact.check();
+    time_stepping.check();
+    output.check();
+    for (const auto &material : materials)
+      material.check();
+
+    // Grains from the list file come after the individually described ones.
+    if (!grain_list_file.empty())
+      {
+        std::ifstream in(grain_list_file);
+        if (!in)
+          throw InputError("Grains/Grain list file = " + grain_list_file,
+                           "cannot open this file.");
+        std::string  line;
+        unsigned int line_number = 0;
+        while (std::getline(in, line))
+          {
+            ++line_number;
+            line = strip_comment(line);
+            if (line.empty())
+              continue;
+            const std::string source = "Grains/Grain list file " +
+                                       grain_list_file + ", line " +
+                                       std::to_string(line_number);
+            const auto         fields = Utilities::split_string_list(line, ',');
+            const unsigned int n_fields = 1 + dim + 1 + dim + 1 + 1 + dim;
+            if (fields.size() != n_fields)
+              throw InputError(source,
+                               "expected " + std::to_string(n_fields) +
+                                 " comma-separated columns (shape, centre, "
+                                 "radius, size, rotation, material, "
+                                 "velocity), found " +
+                                 std::to_string(fields.size()) + ".");
+            GrainParameters<dim> grain;
+            grain.source        = source;
+            grain.shape_text    = fields[0];
+            unsigned int column = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              grain.centre[d] = parse_numbers(fields[column++], source)[0];
+            grain.radius = parse_numbers(fields[column++], source)[0];
+            for (unsigned int d = 0; d < dim; ++d)
+              grain.size[d] = parse_numbers(fields[column++], source)[0];
+            grain.rotation = parse_numbers(fields[column++], source)[0];
+            grain.material = fields[column++];
+            grain.initial_velocity.clear();
+            for (unsigned int d = 0; d < dim; ++d)
+              grain.initial_velocity += (d > 0 ? ";" : "") + fields[column++];
+            grains.push_back(grain);
+          }
+      }
+
+    if (grains.empty())
+      throw InputError("Grains",
+                       "no grain is described: add a subsection 'Grain 1' "
+                       "or a Grain list file.");
+
+    for (auto &grain : grains)
+      {
+        grain.check(grain.source + "/");
+
+        // The material must exist.
+        bool found = false;
+        for (unsigned int m = 0; m < materials.size(); ++m)
+          if (materials[m].name == grain.material)
+            {
+              grain.material_index = m;
+              found                = true;
+            }
+        if (!found)
+          {
+            std::string known;
+            for (const auto &material : materials)
+              known += (known.empty() ? "" : ", ") + material.name;
+            throw InputError(grain.source + "/Material = " + grain.material,
+                             "there is no material of this name in "
+                             "subsection Materials (defined: " +
+                               (known.empty() ? std::string("none") : known) +
+                               ").");
+          }
+
+        // The grain must lie inside the background grid.
+        const auto box = grain.bounding_box();
+        for (unsigned int d = 0; d < dim; ++d)
+          if (box.first[d] < grid.lower_corner[d] ||
+              box.second[d] > grid.upper_corner[d])
+            throw InputError(
+              grain.source,
+              "the grain (bounding box " + point_to_string(box.first) + " to " +
+                point_to_string(box.second) +
+                ") does not lie inside the background grid " +
+                point_to_string(grid.lower_corner) + " to " +
+                point_to_string(grid.upper_corner) +
+                ": move it (Centre) or enlarge the grid (Background grid).");
+      }
+  }
+
+
+
+  // ---------------------------------------------------------- pre-passes
+
+  std::vector<std::string>
+  find_subsections(const std::string &filename, const std::string &parent)
+  {
+    std::ifstream in(filename);
+    if (!in)
+      throw InputError("",
+                       "cannot open the parameter file '" + filename + "'.");
+
+    std::vector<std::string> names;
+    std::vector<std::string> stack;
+    std::string              line;
+    while (std::getline(in, line))
+      {
+        line = strip_comment(line);
+        if (line.rfind("subsection ", 0) == 0)
+          {
+            const std::string name = Utilities::trim(line.substr(11));
+            if (stack.size() == 1 && stack[0] == parent &&
+                std::find(names.begin(), names.end(), name) == names.end())
+              names.push_back(name);
+            stack.push_back(name);
+          }
+        else if (line == "end" && !stack.empty())
+          stack.pop_back();
+        else if (line.rfind("include ", 0) == 0 && stack.empty())
+          for (const auto &name :
+               find_subsections(Utilities::trim(line.substr(8)), parent))
+            if (std::find(names.begin(), names.end(), name) == names.end())
+              names.push_back(name);
+      }
+    return names;
+  }
+
+
+
+  unsigned int
+  read_dimension(const std::string &filename)
+  {
+    ParameterHandler prm;
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "The space dimension of the run, 2 or 3.");
+    prm.parse_input(filename, "", true, false);
+    return prm.get_integer("Dimension");
+  }
+
+
+
+  template struct BackgroundGridParameters<2>;
+  template struct BackgroundGridParameters<3>;
+  template struct PhysicsParameters<2>;
+  template struct PhysicsParameters<3>;
+  template struct GrainParameters<2>;
+  template struct GrainParameters<3>;
+  template struct Parameters<2>;
+  template struct Parameters<3>;
+} // namespace grainmpm

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// grainmpm: multi-grain Material Point Method after Cummins & Brackbill.
+// Usage: grainmpm case.prm | --print-parameters [2|3] |
+//        --check-parameters case.prm | --help
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameters.h>
+#include <grainmpm/simulator.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+#include <sstream>
+
+namespace
+{
+  using namespace grainmpm;
+
+  void
+  print_usage(std::ostream &out)
+  {
+    out << "Usage: grainmpm CASE.prm               run a case\n"
+        << "       grainmpm --check-parameters CASE.prm   parse and check "
+           "only\n"
+        << "       grainmpm --print-parameters [2|3]      print every "
+           "parameter with its documentation\n"
+        << "       grainmpm --help\n";
+  }
+
+
+
+  template <int dim>
+  void
+  print_parameters()
+  {
+    ParameterHandler prm;
+    Parameters<dim>  parameters;
+    parameters.declare(prm, {"example material"}, {"Grain 1"});
+    prm.print_parameters(std::cout, ParameterHandler::PRM);
+  }
+
+
+
+  template <int dim>
+  void
+  check_parameters(const std::string &filename)
+  {
+    ParameterHandler prm;
+    Parameters<dim>  parameters;
+    parameters.parse(filename, prm);
+    std::cout << filename << ": " << dim << "D, " << parameters.materials.size()
+              << " materials, " << parameters.grains.size()
+              << " grains: parameters OK" << std::endl;
+  }
+} // namespace
+
+
+
+int
+main(int argc, char *argv[])
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const std::vector<std::string>           arguments(argv + 1, argv + argc);
+  try
+    {
+      if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h")
+        {
+          print_usage(arguments.empty() ? std::cerr : std::cout);
+          return arguments.empty() ? 1 : 0;
+        }
+      if (arguments[0] == "--print-parameters")
+        {
+          if (arguments.size() > 1 && arguments[1] == "3")
+            print_parameters<3>();
+          else
+            print_parameters<2>();
+          return 0;
+        }
+      if (arguments[0] == "--check-parameters")
+        {
+          if (arguments.size() != 2)
+            {
+              print_usage(std::cerr);
+              return 1;
+            }
+          if (read_dimension(arguments[1]) == 2)
+            check_parameters<2>(arguments[1]);
+          else
+            check_parameters<3>(arguments[1]);
+          return 0;
+        }
+      if (arguments.size() != 1 || arguments[0][0] == '-')
+        {
+          print_usage(std::cerr);
+          return 1;
+        }
+      if (read_dimension(arguments[0]) == 2)
+        run<2>(arguments[0], MPI_COMM_WORLD);
+      else
+        run<3>(arguments[0], MPI_COMM_WORLD);
+    }
+  catch (const InputError &error)
+    {
+      std::cerr << "\ngrainmpm: error: " << error.what() << std::endl;
+      return 1;
+    }
+  catch (const dealii::ExceptionBase &exception)
+    {
+      // Pattern mismatches and other parameter-file errors of deal.II: print
+      // only the part that names the entry, not the source location.
+      std::ostringstream message;
+      exception.print_info(message);
+      std::cerr << "\ngrainmpm: error in the input:\n"
+                << message.str() << std::endl;
+      return 1;
+    }
+  catch (const std::exception &exception)
+    {
+      std::cerr << "\ngrainmpm: error: " << exception.what() << std::endl;
+      return 1;
+    }
+  return 0;
+}

@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/materials/linear_elastic.h>
+
+#include <cmath>
+
+namespace grainmpm
+{
+  template <int dim>
+  LinearElastic<dim>::LinearElastic(const double              density,
+                                    const double              youngs_modulus,
+                                    const double              poissons_ratio,
+                                    const TwoDimensionalModel model)
+    : mass_density(density)
+    , youngs_modulus(youngs_modulus)
+    , poissons_ratio(poissons_ratio)
+    , plane_stress(dim == 2 && model == TwoDimensionalModel::plane_stress)
+  {
+    mu     = youngs_modulus / (2. * (1. + poissons_ratio));
+    lambda = youngs_modulus * poissons_ratio /
+             ((1. + poissons_ratio) * (1. - 2. * poissons_ratio));
+    if (plane_stress)
+      {
+        // Eliminating de_zz from sigma_zz = 0 gives the plane-stress
+        // modulus lambda* = 2 mu lambda / (lambda + 2 mu), and the wave speed
+        // sqrt(E / (rho (1 - nu^2))).
+        lambda = 2. * mu * lambda / (lambda + 2. * mu);
+      }
+    dilatational_wave_speed = std::sqrt((lambda + 2. * mu) / density);
+  }
+
+
+
+  template <int dim>
+  SymmetricTensor<2, 3>
+  LinearElastic<dim>::update_stress(
+    const SymmetricTensor<2, 3> &stress,
+    const Tensor<2, dim>        &displacement_gradient_increment,
+    double & /*plastic_strain*/) const
+  {
+    // Embed dt grad v into 3D; in 2D the out-of-plane rows are zero.
+    Tensor<2, 3> increment;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        increment[i][j] = displacement_gradient_increment[i][j];
+    const SymmetricTensor<2, 3> strain_increment = symmetrize(increment);
+    const Tensor<2, 3>          spin_increment =
+      0.5 * (increment - transpose(increment));
+
+    // Jaumann rotation of the old stress: sigma + dW sigma - sigma dW.
+    const Tensor<2, 3> old_stress = stress;
+    const Tensor<2, 3> rotated =
+      old_stress + spin_increment * old_stress - old_stress * spin_increment;
+
+    // The in-plane trace; in plane stress lambda is already the reduced one
+    // and sigma_zz gets no increment.
+    const double          volumetric = trace(strain_increment);
+    SymmetricTensor<2, 3> new_stress = symmetrize(rotated);
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = i; j < dim; ++j)
+        new_stress[i][j] += 2. * mu * strain_increment[i][j] +
+                            (i == j ? lambda * volumetric : 0.);
+    if (dim == 2 && !plane_stress)
+      new_stress[2][2] += lambda * volumetric;
+    return new_stress;
+  }
+
+
+
+  template <int dim>
+  double
+  LinearElastic<dim>::strain_energy_density(
+    const SymmetricTensor<2, 3> &stress) const
+  {
+    // 1/2 sigma : C^{-1} : sigma for isotropic elasticity in 3D; with the
+    // plane strain sigma_zz or the plane stress sigma_zz = 0 this is the
+    // corresponding 2D energy.
+    const double E  = youngs_modulus;
+    const double nu = poissons_ratio;
+    const double normal =
+      stress[0][0] * stress[0][0] + stress[1][1] * stress[1][1] +
+      stress[2][2] * stress[2][2] -
+      2. * nu *
+        (stress[0][0] * stress[1][1] + stress[1][1] * stress[2][2] +
+         stress[2][2] * stress[0][0]);
+    const double shear = stress[0][1] * stress[0][1] +
+                         stress[0][2] * stress[0][2] +
+                         stress[1][2] * stress[1][2];
+    return normal / (2. * E) + (1. + nu) * shear / E;
+  }
+
+
+
+  template <int dim>
+  double
+  LinearElastic<dim>::wave_speed() const
+  {
+    return dilatational_wave_speed;
+  }
+
+
+
+  template <int dim>
+  double
+  LinearElastic<dim>::density() const
+  {
+    return mass_density;
+  }
+
+
+
+  template <int dim>
+  std::unique_ptr<ConstitutiveModel<dim>>
+  create_constitutive_model(const MaterialParameters &material,
+                            const TwoDimensionalModel model)
+  {
+    if (material.constitutive_model == "linear elastic")
+      return std::make_unique<LinearElastic<dim>>(material.density,
+                                                  material.youngs_modulus,
+                                                  material.poissons_ratio,
+                                                  model);
+    throw InputError("Materials/" + material.name + "/Constitutive model",
+                     "unknown model '" + material.constitutive_model + "'.");
+  }
+
+
+
+  template class LinearElastic<2>;
+  template class LinearElastic<3>;
+  template std::unique_ptr<ConstitutiveModel<2>>
+  create_constitutive_model<2>(const MaterialParameters &,
+                               const TwoDimensionalModel);
+  template std::unique_ptr<ConstitutiveModel<3>>
+  create_constitutive_model<3>(const MaterialParameters &,
+                               const TwoDimensionalModel);
+} // namespace grainmpm

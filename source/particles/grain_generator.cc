@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/particles/material_point_layout.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace grainmpm
+{
+  template <int dim>
+  std::shared_ptr<FunctionParser<dim>>
+  parse_vector_function(const std::string &expressions,
+                        const bool         time_dependent,
+                        const std::string &entry)
+  {
+    auto function = std::make_shared<FunctionParser<dim>>(dim);
+    try
+      {
+        std::string variables = FunctionParser<dim>::default_variable_names();
+        if (time_dependent)
+          variables += ",t";
+        function->initialize(variables,
+                             expressions,
+                             std::map<std::string, double>{{"pi", M_PI}},
+                             time_dependent);
+        // muparser reports some errors only on evaluation.
+        Vector<double> value(dim);
+        function->vector_value(Point<dim>(), value);
+      }
+    catch (const ExceptionBase &exception)
+      {
+        std::ostringstream message;
+        exception.print_info(message);
+        throw InputError(entry + " = " + expressions,
+                         "cannot parse the expressions: " +
+                           Utilities::trim(message.str()));
+      }
+    return function;
+  }
+
+
+
+  template <int dim>
+  GrainGenerator<dim>::GrainGenerator(const Parameters<dim> &parameters)
+    : parameters(parameters)
+  {}
+
+
+
+  template <int dim>
+  std::vector<GrainInfo<dim>>
+  GrainGenerator<dim>::generate(
+    const BackgroundGrid<dim>       &grid,
+    Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    using Layout                       = MaterialPointLayout<dim>;
+    const auto          &grains        = parameters.grains;
+    const unsigned int   n_grains      = grains.size();
+    const unsigned int   per_direction = parameters.particles_per_cell;
+    const unsigned int   per_cell = Utilities::fixed_power<dim>(per_direction);
+    const Tensor<1, dim> h        = grid.cell_size();
+    double               cell_volume = 1.;
+    for (unsigned int d = 0; d < dim; ++d)
+      cell_volume *= h[d];
+
+    // Cells by their (i,j,k) index in the box, so that each grain visits
+    // only the cells of its bounding box.
+    const auto  &n_cells       = parameters.grid.n_cells;
+    unsigned int n_total_cells = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      n_total_cells *= n_cells[d];
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells(
+      n_total_cells, grid.get_triangulation().end());
+    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Point<dim> centre = cell->center();
+          unsigned int     index = 0, stride = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              index += stride * static_cast<unsigned int>(std::floor(
+                                  (centre[d] - grid.lower_corner()[d]) / h[d]));
+              stride *= n_cells[d];
+            }
+          cells[index] = cell;
+        }
+
+    std::vector<GrainInfo<dim>>                       info(n_grains);
+    std::vector<std::shared_ptr<FunctionParser<dim>>> initial_velocities(
+      n_grains);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        info[g].material = grains[g].material_index;
+        info[g].rigid    = grains[g].rigid;
+        initial_velocities[g] =
+          parse_vector_function<dim>(grains[g].initial_velocity,
+                                     false,
+                                     grains[g].source + "/Initial velocity");
+        if (grains[g].rigid)
+          info[g].prescribed_velocity =
+            parse_vector_function<dim>(grains[g].prescribed_velocity,
+                                       true,
+                                       grains[g].source +
+                                         "/Prescribed velocity");
+      }
+
+    // First pass: which grain owns each candidate point. A point claimed by
+    // two grains means the grains overlap.
+    struct Candidate
+    {
+      unsigned int cell;
+      unsigned int sub_point;
+      unsigned int grain;
+    };
+    std::vector<Candidate>    candidates;
+    std::vector<unsigned int> owner(std::size_t(n_total_cells) * per_cell,
+                                    numbers::invalid_unsigned_int);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        const auto   box      = grains[g].bounding_box();
+        unsigned int first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double lower = (box.first[d] - grid.lower_corner()[d]) / h[d];
+            const double upper =
+              (box.second[d] - grid.lower_corner()[d]) / h[d];
+            first[d] =
+              static_cast<unsigned int>(std::max(0., std::floor(lower)));
+            last[d] =
+              std::min<unsigned int>(n_cells[d] - 1,
+                                     static_cast<unsigned int>(
+                                       std::max(0., std::floor(upper))));
+          }
+        for (unsigned int k = first[2]; k <= last[2]; ++k)
+          for (unsigned int j = first[1]; j <= last[1]; ++j)
+            for (unsigned int i = first[0]; i <= last[0]; ++i)
+              {
+                const unsigned int cell_index =
+                  i + n_cells[0] * (j + (dim == 3 ? n_cells[1] * k : 0));
+                if (cells[cell_index] == grid.get_triangulation().end())
+                  continue;
+                const unsigned int cell_ijk[3] = {i, j, k};
+                for (unsigned int q = 0; q < per_cell; ++q)
+                  {
+                    Point<dim>   point;
+                    unsigned int rest = q;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      {
+                        point[d] =
+                          grid.lower_corner()[d] +
+                          h[d] * (cell_ijk[d] + ((rest % per_direction) + 0.5) /
+                                                  per_direction);
+                        rest /= per_direction;
+                      }
+                    if (!grains[g].contains(point))
+                      continue;
+                    unsigned int &claimed =
+                      owner[std::size_t(cell_index) * per_cell + q];
+                    if (claimed != numbers::invalid_unsigned_int)
+                      throw InputError(grains[g].source,
+                                       "the grain overlaps " +
+                                         grains[claimed].source +
+                                         ": grains must not overlap at the "
+                                         "start of a run.");
+                    claimed = g;
+                    candidates.push_back({cell_index, q, g});
+                  }
+              }
+      }
+
+    // Globally unique particle ids: this rank's candidates follow those of
+    // the lower ranks.
+    const MPI_Comm communicator   = grid.get_triangulation().get_communicator();
+    types::particle_index n_local = candidates.size(), first_id = 0;
+    MPI_Exscan(&n_local,
+               &first_id,
+               1,
+               Utilities::MPI::mpi_type_id_for_type<types::particle_index>,
+               MPI_SUM,
+               communicator);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      first_id = 0;
+
+    std::vector<double> properties(Layout::n_properties, 0.);
+    Vector<double>      velocity(dim);
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+      {
+        const Candidate            &candidate = candidates[c];
+        const auto                 &cell      = cells[candidate.cell];
+        const GrainParameters<dim> &grain     = grains[candidate.grain];
+        const double                density =
+          parameters.materials[grain.material_index].density;
+
+        Point<dim>   reference, point;
+        unsigned int rest = candidate.sub_point;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            reference[d] = ((rest % per_direction) + 0.5) / per_direction;
+            rest /= per_direction;
+            point[d] = cell->vertex(0)[d] + h[d] * reference[d];
+          }
+
+        std::fill(properties.begin(), properties.end(), 0.);
+        const double volume                = cell_volume / per_cell;
+        properties[Layout::mass]           = density * volume;
+        properties[Layout::volume]         = volume;
+        properties[Layout::initial_volume] = volume;
+        properties[Layout::grain]          = candidate.grain;
+        initial_velocities[candidate.grain]->vector_value(point, velocity);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            properties[Layout::velocity + d] = velocity[d];
+            properties[Layout::deformation_gradient + dim * d + d] = 1.;
+          }
+        particle_handler.insert_particle(
+          point, reference, first_id + c, cell, make_array_view(properties));
+        info[candidate.grain].mass += density * volume;
+        info[candidate.grain].n_particles += 1;
+      }
+    particle_handler.update_cached_numbers();
+
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        info[g].mass = Utilities::MPI::sum(info[g].mass, communicator);
+        info[g].n_particles =
+          Utilities::MPI::sum(info[g].n_particles, communicator);
+        if (info[g].n_particles == 0)
+          throw InputError(grains[g].source,
+                           "the grain received no material point: it is "
+                           "smaller than the point spacing. Refine the grid "
+                           "(Background grid/Number of cells) or raise "
+                           "Material points/Particles per cell.");
+      }
+    return info;
+  }
+
+
+
+  template class GrainGenerator<2>;
+  template class GrainGenerator<3>;
+  template std::shared_ptr<FunctionParser<2>>
+  parse_vector_function<2>(const std::string &,
+                           const bool,
+                           const std::string &);
+  template std::shared_ptr<FunctionParser<3>>
+  parse_vector_function<3>(const std::string &,
+                           const bool,
+                           const std::string &);
+} // namespace grainmpm

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/postprocess/energy_history.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iomanip>
+
+namespace grainmpm
+{
+  template <int dim>
+  EnergyHistory<dim>::EnergyHistory(
+    const std::string                                          &filename,
+    const std::vector<GrainInfo<dim>>                          &grains,
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+    const MPI_Comm                                              communicator)
+    : grains(grains)
+    , materials(materials)
+    , communicator(communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    file.open(filename);
+    if (!file)
+      throw InputError("Output/Output directory",
+                       "cannot write the file '" + filename + "'.");
+    const std::string energy  = (dim == 2 ? "M L^2/T^2 per L" : "M L^2/T^2");
+    const std::string impulse = (dim == 2 ? "M L/T per L" : "M L/T");
+    file << "step,time [T],dt [T],kinetic_energy [" << energy
+         << "],elastic_energy [" << energy << "],total_energy [" << energy
+         << "]";
+    for (unsigned int d = 0; d < dim; ++d)
+      file << ",momentum_"
+           << "xyz"[d] << " [" << impulse << "]";
+    file << ",contact_nodes [1],removed_particles [1]\n" << std::flush;
+  }
+
+
+
+  template <int dim>
+  EnergySummary<dim>
+  EnergyHistory<dim>::compute(
+    const Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    using Layout = MaterialPointLayout<dim>;
+    EnergySummary<dim> summary;
+    for (const auto &particle : particle_handler)
+      {
+        const auto         properties = particle.get_properties();
+        const unsigned int grain      = Layout::get_grain(properties);
+        if (grains[grain].rigid)
+          continue;
+        const double         mass     = properties[Layout::mass];
+        const Tensor<1, dim> velocity = Layout::get_velocity(properties);
+        summary.kinetic += 0.5 * mass * velocity.norm_square();
+        summary.momentum += mass * velocity;
+        summary.elastic +=
+          properties[Layout::volume] *
+          materials[grains[grain].material]->strain_energy_density(
+            Layout::get_stress(properties));
+      }
+    summary.kinetic  = Utilities::MPI::sum(summary.kinetic, communicator);
+    summary.elastic  = Utilities::MPI::sum(summary.elastic, communicator);
+    summary.momentum = Utilities::MPI::sum(summary.momentum, communicator);
+    return summary;
+  }
+
+
+
+  template <int dim>
+  void
+  EnergyHistory<dim>::write_row(const unsigned int        step,
+                                const double              time,
+                                const double              dt,
+                                const EnergySummary<dim> &summary,
+                                const StepStatistics     &statistics)
+  {
+    if (!file.is_open())
+      return;
+    file << step << ',' << std::setprecision(10) << time << ',' << dt << ','
+         << std::setprecision(12) << summary.kinetic << ',' << summary.elastic
+         << ',' << summary.total();
+    for (unsigned int d = 0; d < dim; ++d)
+      file << ',' << summary.momentum[d];
+    file << ',' << statistics.n_contact_nodes << ',' << statistics.n_removed
+         << '\n'
+         << std::flush;
+  }
+
+
+
+  template struct EnergySummary<2>;
+  template struct EnergySummary<3>;
+  template class EnergyHistory<2>;
+  template class EnergyHistory<3>;
+} // namespace grainmpm

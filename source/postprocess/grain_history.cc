@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/postprocess/grain_history.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iomanip>
+
+namespace grainmpm
+{
+  template <int dim>
+  GrainHistory<dim>::GrainHistory(const std::string &filename,
+                                  const unsigned int n_grains,
+                                  const MPI_Comm     communicator)
+    : n_grains(n_grains)
+    , communicator(communicator)
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    file.open(filename);
+    if (!file)
+      throw InputError("Output/Output directory",
+                       "cannot write the file '" + filename + "'.");
+    file << "time [T],grain [1],mass [M]";
+    for (unsigned int d = 0; d < dim; ++d)
+      file << ",centre_"
+           << "xyz"[d] << " [L]";
+    for (unsigned int d = 0; d < dim; ++d)
+      file << ",velocity_"
+           << "xyz"[d] << " [L/T]";
+    if (dim == 2)
+      file << ",angular_velocity_z [1/T]";
+    else
+      file << ",angular_velocity_x [1/T],angular_velocity_y "
+              "[1/T],angular_velocity_z [1/T]";
+    file << '\n' << std::flush;
+  }
+
+
+
+  template <int dim>
+  std::vector<GrainMotion<dim>>
+  GrainHistory<dim>::compute(
+    const Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    using Layout = MaterialPointLayout<dim>;
+    // First moments: mass, m x, m v.
+    std::vector<double> sums(n_grains * (1 + 2 * dim), 0.);
+    for (const auto &particle : particle_handler)
+      {
+        const auto         properties = particle.get_properties();
+        const unsigned int g          = Layout::get_grain(properties);
+        const double       mass       = properties[Layout::mass];
+        double            *sum        = &sums[g * (1 + 2 * dim)];
+        sum[0] += mass;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            sum[1 + d] += mass * particle.get_location()[d];
+            sum[1 + dim + d] += mass * properties[Layout::velocity + d];
+          }
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+    std::vector<GrainMotion<dim>> motions(n_grains);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        const double *sum = &sums[g * (1 + 2 * dim)];
+        motions[g].mass   = sum[0];
+        if (sum[0] > 0.)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              motions[g].centre_of_mass[d] = sum[1 + d] / sum[0];
+              motions[g].velocity[d]       = sum[1 + dim + d] / sum[0];
+            }
+      }
+
+    // Second moments about the centre of mass: angular momentum L and the
+    // inertia tensor I (3D) or polar moment (2D).
+    const unsigned int  n_second = (dim == 2 ? 2 : 3 + 9);
+    std::vector<double> second(n_grains * n_second, 0.);
+    for (const auto &particle : particle_handler)
+      {
+        const auto           properties = particle.get_properties();
+        const unsigned int   g          = Layout::get_grain(properties);
+        const double         mass       = properties[Layout::mass];
+        const Tensor<1, dim> r =
+          particle.get_location() - motions[g].centre_of_mass;
+        const Tensor<1, dim> v =
+          Layout::get_velocity(properties) - motions[g].velocity;
+        double *sum = &second[g * n_second];
+        if (dim == 2)
+          {
+            sum[0] += mass * (r[0] * v[1] - r[1] * v[0]);
+            sum[1] += mass * r.norm_square();
+          }
+        else
+          {
+            const Tensor<1, 3> r3({r[0], r[1], r[dim - 1]});
+            const Tensor<1, 3> v3({v[0], v[1], v[dim - 1]});
+            const Tensor<1, 3> l = cross_product_3d(r3, v3);
+            for (unsigned int d = 0; d < 3; ++d)
+              sum[d] += mass * l[d];
+            for (unsigned int a = 0; a < 3; ++a)
+              for (unsigned int b = 0; b < 3; ++b)
+                sum[3 + 3 * a + b] +=
+                  mass * ((a == b ? r3.norm_square() : 0.) - r3[a] * r3[b]);
+          }
+      }
+    Utilities::MPI::sum(second, communicator, second);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        const double *sum = &second[g * n_second];
+        if (dim == 2)
+          {
+            if (sum[1] > 0.)
+              motions[g].angular_velocity[0] = sum[0] / sum[1];
+          }
+        else
+          {
+            Tensor<2, 3> inertia;
+            Tensor<1, 3> angular_momentum;
+            for (unsigned int a = 0; a < 3; ++a)
+              {
+                angular_momentum[a] = sum[a];
+                for (unsigned int b = 0; b < 3; ++b)
+                  inertia[a][b] = sum[3 + 3 * a + b];
+              }
+            if (determinant(inertia) > 0.)
+              {
+                const Tensor<1, 3> omega = invert(inertia) * angular_momentum;
+                for (unsigned int d = 0; d < 3; ++d)
+                  motions[g].angular_velocity[d] = omega[d];
+              }
+          }
+      }
+    return motions;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainHistory<dim>::write(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const double                           time)
+  {
+    const auto motions = compute(particle_handler);
+    if (!file.is_open())
+      return;
+    file << std::setprecision(12);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        file << time << ',' << g + 1 << ',' << motions[g].mass;
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ',' << motions[g].centre_of_mass[d];
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ',' << motions[g].velocity[d];
+        for (unsigned int d = 0; d < (dim == 2 ? 1 : 3); ++d)
+          file << ',' << motions[g].angular_velocity[d];
+        file << '\n';
+      }
+    file << std::flush;
+  }
+
+
+
+  template class GrainHistory<2>;
+  template class GrainHistory<3>;
+} // namespace grainmpm

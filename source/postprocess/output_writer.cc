@@ -1,0 +1,301 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/postprocess/output_writer.h>
+
+#include <deal.II/base/data_out_base.h>
+
+#include <deal.II/fe/fe_q.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace grainmpm
+{
+  template <int dim>
+  double
+  principal_stress_difference(const SymmetricTensor<2, 3> &stress)
+  {
+    if (dim == 2)
+      {
+        const double difference = stress[0][0] - stress[1][1];
+        return std::sqrt(difference * difference +
+                         4. * stress[0][1] * stress[0][1]);
+      }
+    const auto principal = eigenvalues(stress); // descending order
+    return principal[0] - principal[2];
+  }
+
+
+
+  double
+  von_mises_stress(const SymmetricTensor<2, 3> &stress)
+  {
+    const SymmetricTensor<2, 3> deviatoric = deviator(stress);
+    return std::sqrt(1.5 * (deviatoric * deviatoric));
+  }
+
+
+
+  namespace
+  {
+    /**
+     * Point patches of the material points with the fields we want, in the
+     * manner of Particles::DataOut but with derived quantities.
+     */
+    template <int dim>
+    class ParticlePatches : public DataOutInterface<0, dim>
+    {
+    public:
+      void
+      build(const Particles::ParticleHandler<dim> &particle_handler)
+      {
+        using Layout = MaterialPointLayout<dim>;
+        names        = {"grain", "id"};
+        for (unsigned int d = 0; d < dim; ++d)
+          names.emplace_back("velocity");
+        for (unsigned int d = 0; d < dim * dim; ++d)
+          names.emplace_back("stress");
+        if (dim == 2)
+          names.emplace_back("stress_zz");
+        for (const char *name : {"principal_stress_difference",
+                                 "von_mises_stress",
+                                 "volume",
+                                 "plastic_strain"})
+          names.emplace_back(name);
+        ranges.clear();
+        ranges.emplace_back(
+          2,
+          2 + dim - 1,
+          "velocity",
+          DataComponentInterpretation::component_is_part_of_vector);
+        ranges.emplace_back(
+          2 + dim,
+          2 + dim + dim * dim - 1,
+          "stress",
+          DataComponentInterpretation::component_is_part_of_tensor);
+
+        patches.clear();
+        patches.resize(particle_handler.n_locally_owned_particles());
+        unsigned int i = 0;
+        for (const auto &particle : particle_handler)
+          {
+            auto &patch       = patches[i];
+            patch.vertices[0] = particle.get_location();
+            patch.patch_index = i;
+            patch.data.reinit(names.size(), 1);
+            const auto   properties = particle.get_properties();
+            const auto   stress     = Layout::get_stress(properties);
+            unsigned int c          = 0;
+            patch.data(c++, 0)      = Layout::get_grain(properties) + 1;
+            patch.data(c++, 0)      = particle.get_id();
+            for (unsigned int d = 0; d < dim; ++d)
+              patch.data(c++, 0) = properties[Layout::velocity + d];
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int b = 0; b < dim; ++b)
+                patch.data(c++, 0) = stress[a][b];
+            if (dim == 2)
+              patch.data(c++, 0) = stress[2][2];
+            patch.data(c++, 0) = principal_stress_difference<dim>(stress);
+            patch.data(c++, 0) = von_mises_stress(stress);
+            patch.data(c++, 0) = properties[Layout::volume];
+            patch.data(c++, 0) = properties[Layout::plastic_strain];
+            ++i;
+          }
+      }
+
+    private:
+      const std::vector<DataOutBase::Patch<0, dim>> &
+      get_patches() const override
+      {
+        return patches;
+      }
+
+      std::vector<std::string>
+      get_dataset_names() const override
+      {
+        return names;
+      }
+
+      std::vector<
+        std::tuple<unsigned int,
+                   unsigned int,
+                   std::string,
+                   DataComponentInterpretation::DataComponentInterpretation>>
+      get_nonscalar_data_ranges() const override
+      {
+        return ranges;
+      }
+
+      std::vector<DataOutBase::Patch<0, dim>> patches;
+      std::vector<std::string>                names;
+      std::vector<
+        std::tuple<unsigned int,
+                   unsigned int,
+                   std::string,
+                   DataComponentInterpretation::DataComponentInterpretation>>
+        ranges;
+    };
+
+
+
+    void
+    write_pvd(const std::string                                 &filename,
+              const std::vector<std::pair<double, std::string>> &records)
+    {
+      std::ofstream out(filename);
+      DataOutBase::write_pvd_record(out, records);
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  OutputWriter<dim>::OutputWriter(const OutputParameters    &parameters,
+                                  const BackgroundGrid<dim> &grid)
+    : parameters(parameters)
+    , grid(grid)
+    , vector_fe(FE_Q<dim>(1), dim)
+    , vector_dof_handler(grid.get_triangulation())
+  {
+    vector_dof_handler.distribute_dofs(vector_fe);
+    const MPI_Comm communicator = grid.get_triangulation().get_communicator();
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        if (parameters.write_particles)
+          std::filesystem::create_directories(parameters.directory +
+                                              "/particles");
+        if (parameters.write_grid)
+          std::filesystem::create_directories(parameters.directory + "/grid");
+      }
+    MPI_Barrier(communicator);
+  }
+
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::write_particles(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const double                           time,
+    const unsigned int                     index)
+  {
+    ParticlePatches<dim> patches;
+    patches.build(particle_handler);
+    DataOutBase::VtkFlags flags;
+    flags.time  = time;
+    flags.cycle = index;
+    patches.set_flags(flags);
+    const std::string name = patches.write_vtu_with_pvtu_record(
+      parameters.directory + "/particles/",
+      "particles",
+      index,
+      grid.get_triangulation().get_communicator(),
+      5,
+      8);
+    particle_records.emplace_back(time, "particles/" + name);
+    if (Utilities::MPI::this_mpi_process(
+          grid.get_triangulation().get_communicator()) == 0)
+      write_pvd(parameters.directory + "/particles.pvd", particle_records);
+  }
+
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::write_grid(const ExplicitLeapfrog<dim> &stepper,
+                                const double                 time,
+                                const unsigned int           index)
+  {
+    const auto &layout     = stepper.get_layout();
+    const auto &masses     = stepper.get_masses();
+    const auto &velocities = stepper.get_velocities();
+    const auto &contact    = stepper.get_node_contact_flags();
+    const auto &nodes      = grid.locally_relevant_nodes();
+
+    // Nodal sums over the slots of each node.
+    Vector<double>              nodal_mass(grid.get_dof_handler().n_dofs());
+    Vector<double>              n_grains(grid.get_dof_handler().n_dofs());
+    Vector<double>              contact_flag(grid.get_dof_handler().n_dofs());
+    std::vector<Tensor<1, dim>> momentum(grid.n_nodes());
+    for (unsigned int node = 0; node < layout.n_nodes(); ++node)
+      {
+        const auto dof = nodes.nth_index_in_set(node);
+        for (unsigned int s = layout.node_slots_begin(node);
+             s < layout.node_slots_end(node);
+             ++s)
+          {
+            nodal_mass[dof] += masses.local_element(s);
+            for (unsigned int d = 0; d < dim; ++d)
+              momentum[node][d] +=
+                masses.local_element(s) * velocities.local_element(s * dim + d);
+          }
+        n_grains[dof] =
+          layout.node_slots_end(node) - layout.node_slots_begin(node);
+        contact_flag[dof] = contact[node];
+      }
+
+    // Centre-of-mass velocity on the vector-valued Q1 DoFs.
+    Vector<double> velocity(vector_dof_handler.n_dofs());
+    auto           scalar_cell = grid.get_dof_handler().begin_active();
+    for (const auto &cell : vector_dof_handler.active_cell_iterators())
+      {
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const auto dof  = scalar_cell->vertex_dof_index(v, 0);
+              const auto node = nodes.index_within_set(dof);
+              if (nodal_mass[dof] > 0.)
+                for (unsigned int d = 0; d < dim; ++d)
+                  velocity[cell->vertex_dof_index(v, d)] =
+                    momentum[node][d] / nodal_mass[dof];
+            }
+        ++scalar_cell;
+      }
+
+    DataOut<dim> data_out;
+    data_out.attach_triangulation(grid.get_triangulation());
+    data_out.add_data_vector(grid.get_dof_handler(), nodal_mass, "nodal_mass");
+    data_out.add_data_vector(grid.get_dof_handler(),
+                             n_grains,
+                             "number_of_grains");
+    data_out.add_data_vector(grid.get_dof_handler(), contact_flag, "contact");
+    data_out.add_data_vector(
+      vector_dof_handler,
+      velocity,
+      std::vector<std::string>(dim, "centre_of_mass_velocity"),
+      std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+        dim, DataComponentInterpretation::component_is_part_of_vector));
+    data_out.build_patches();
+    DataOutBase::VtkFlags flags;
+    flags.time  = time;
+    flags.cycle = index;
+    data_out.set_flags(flags);
+    const std::string name = data_out.write_vtu_with_pvtu_record(
+      parameters.directory + "/grid/",
+      "grid",
+      index,
+      grid.get_triangulation().get_communicator(),
+      5,
+      8);
+    grid_records.emplace_back(time, "grid/" + name);
+    if (Utilities::MPI::this_mpi_process(
+          grid.get_triangulation().get_communicator()) == 0)
+      write_pvd(parameters.directory + "/grid.pvd", grid_records);
+  }
+
+
+
+  template double
+  principal_stress_difference<2>(const SymmetricTensor<2, 3> &);
+  template double
+  principal_stress_difference<3>(const SymmetricTensor<2, 3> &);
+  template class OutputWriter<2>;
+  template class OutputWriter<3>;
+} // namespace grainmpm

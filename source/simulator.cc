@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/simulator.h>
+
+#include <deal.II/base/discrete_time.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace grainmpm
+{
+  template <int dim>
+  Simulator<dim>::Simulator(const Parameters<dim>  &parameters,
+                            const ParameterHandler &prm,
+                            const std::string      &input_file,
+                            const MPI_Comm          communicator)
+    : parameters(parameters)
+    , communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , timer(communicator,
+            pcout,
+            parameters.output.test_mode ? TimerOutput::never :
+                                          TimerOutput::summary,
+            TimerOutput::wall_times)
+    , grid(parameters.grid, communicator)
+    , particle_handler(grid.get_triangulation(),
+                       grid.get_mapping(),
+                       MaterialPointLayout<dim>::n_properties)
+  {
+    if (Utilities::MPI::n_mpi_processes(communicator) != 1)
+      throw InputError("",
+                       "this version of grainmpm runs on one MPI rank; run "
+                       "it without mpirun (parallel runs are planned).");
+
+    // Record the inputs before anything can fail (DESIGN.md section 6).
+    const std::string &directory = parameters.output.directory;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        std::filesystem::create_directories(directory);
+        std::filesystem::copy_file(
+          input_file,
+          directory + "/original.prm",
+          std::filesystem::copy_options::overwrite_existing);
+        std::ofstream used(directory + "/parameters.prm");
+        prm.print_parameters(used, ParameterHandler::PRM);
+      }
+
+    for (const auto &material : parameters.materials)
+      materials.emplace_back(create_constitutive_model<dim>(
+        material, parameters.physics.two_dimensional_model));
+  }
+
+
+
+  template <int dim>
+  double
+  Simulator<dim>::compute_time_step(const double max_speed) const
+  {
+    if (parameters.time_stepping.time_step > 0.)
+      return parameters.time_stepping.time_step;
+    double wave_speed = 0.;
+    for (const auto &grain : grains)
+      if (!grain.rigid)
+        wave_speed =
+          std::max(wave_speed, materials[grain.material]->wave_speed());
+    return parameters.time_stepping.cfl_number * grid.minimum_cell_size() /
+           (wave_speed + max_speed);
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_output(const unsigned int step,
+                               const double       time,
+                               const double       dt)
+  {
+    TimerOutput::Scope scope(timer, "output");
+    if (parameters.output.write_particles)
+      output_writer->write_particles(particle_handler, time, n_outputs);
+    if (parameters.output.write_grid && step > 0)
+      output_writer->write_grid(*stepper, time, n_outputs);
+    if (parameters.output.write_grain_history)
+      grain_history->write(particle_handler, time);
+    ++n_outputs;
+
+    pcout << "step " << std::setw(6) << step << "  t = " << std::scientific
+          << std::setprecision(4) << time << "  dt = " << std::setprecision(3)
+          << dt << "  E_kin = " << std::setprecision(5)
+          << current_energy.kinetic << "  E_el = " << current_energy.elastic
+          << "  E_tot = " << current_energy.total() << std::defaultfloat
+          << std::endl;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::run()
+  {
+    {
+      TimerOutput::Scope  scope(timer, "setup");
+      GrainGenerator<dim> generator(parameters);
+      grains  = generator.generate(grid, particle_handler);
+      stepper = std::make_unique<ExplicitLeapfrog<dim>>(parameters,
+                                                        grid,
+                                                        grains,
+                                                        materials);
+      output_writer =
+        std::make_unique<OutputWriter<dim>>(parameters.output, grid);
+      energy_history =
+        std::make_unique<EnergyHistory<dim>>(parameters.output.directory +
+                                               "/energy.csv",
+                                             grains,
+                                             materials,
+                                             communicator);
+      grain_history =
+        std::make_unique<GrainHistory<dim>>(parameters.output.directory +
+                                              "/grains.csv",
+                                            grains.size(),
+                                            communicator);
+    }
+    pcout << "grainmpm: " << dim << "D, "
+          << grid.get_triangulation().n_global_active_cells() << " cells, "
+          << grains.size() << " grains, "
+          << particle_handler.n_global_particles() << " material points"
+          << std::endl;
+
+    // Particles that the handler loses (should not happen: G2P checks the
+    // box first) are counted, never silently dropped.
+    particle_handler.signals.particle_lost.connect(
+      [this](const auto &, const auto &) { ++n_removed; });
+
+    double max_speed = 0.;
+    for (const auto &particle : particle_handler)
+      max_speed = std::max(max_speed,
+                           MaterialPointLayout<dim>::get_velocity(
+                             particle.get_properties())
+                             .norm());
+    max_speed = Utilities::MPI::max(max_speed, communicator);
+
+    initial_energy = current_energy = energy_history->compute(particle_handler);
+    minimum_energy = maximum_energy = initial_energy.total();
+    energy_history->write_row(0, 0., 0., initial_energy, StepStatistics());
+    write_output(0, 0., 0.);
+
+    const double end_time        = parameters.time_stepping.end_time;
+    const double output_interval = parameters.output.interval;
+    double       next_output     = output_interval;
+    DiscreteTime time(0., end_time, compute_time_step(max_speed));
+    unsigned int n_contact_steps = 0;
+    while (!time.is_at_end() &&
+           time.get_step_number() <
+             parameters.time_stepping.maximum_number_of_steps)
+      {
+        StepStatistics statistics;
+        {
+          TimerOutput::Scope scope(timer, "explicit step");
+          statistics = stepper->advance(particle_handler,
+                                        time.get_current_time(),
+                                        time.get_next_step_size());
+        }
+        time.advance_time();
+        n_removed += statistics.n_removed;
+        if (statistics.n_contact_nodes > 0)
+          ++n_contact_steps;
+        if (statistics.n_removed > 0)
+          pcout << "  " << statistics.n_removed
+                << " particles left through open faces at t = "
+                << time.get_current_time() << std::endl;
+
+        {
+          TimerOutput::Scope scope(timer, "diagnostics");
+          current_energy = energy_history->compute(particle_handler);
+          energy_history->write_row(time.get_step_number(),
+                                    time.get_current_time(),
+                                    time.get_previous_step_size(),
+                                    current_energy,
+                                    statistics);
+          minimum_energy = std::min(minimum_energy, current_energy.total());
+          maximum_energy = std::max(maximum_energy, current_energy.total());
+        }
+        if (!std::isfinite(current_energy.total()))
+          throw InputError("Time stepping",
+                           "the solution became NaN/infinite at t = " +
+                             std::to_string(time.get_current_time()) +
+                             ": the time step is too large for this problem "
+                             "(lower CFL number or Time step).");
+
+        if (time.get_current_time() >= next_output * (1. - 1e-12) ||
+            time.is_at_end())
+          {
+            write_output(time.get_step_number(),
+                         time.get_current_time(),
+                         time.get_previous_step_size());
+            while (next_output <= time.get_current_time() * (1. + 1e-12))
+              next_output +=
+                (output_interval > 0. ? output_interval :
+                                        time.get_previous_step_size());
+          }
+        if (!time.is_at_end())
+          time.set_desired_next_step_size(
+            compute_time_step(statistics.max_speed));
+      }
+
+    // Final summary: O(1) numbers, fit for the regression tests.
+    const double reference = std::max(initial_energy.total(), 1e-300);
+    pcout << "\nfinished: " << time.get_step_number()
+          << " steps to t = " << time.get_current_time() << "\n"
+          << "  steps with contact:       " << n_contact_steps << "\n"
+          << "  particles removed:        " << n_removed << "\n"
+          << "  material points left:     "
+          << particle_handler.n_global_particles() << "\n"
+          << "  E_total(end) / E_total(0) = "
+          << current_energy.total() / reference << "\n"
+          << "  min, max E_total / E_total(0) = " << minimum_energy / reference
+          << ", " << maximum_energy / reference << "\n"
+          << "  E_kin(end) / E_total(0)   = "
+          << current_energy.kinetic / reference << "\n"
+          << "  E_el(end) / E_total(0)    = "
+          << current_energy.elastic / reference << "\n";
+    Tensor<1, dim> momentum_change =
+      current_energy.momentum - initial_energy.momentum;
+    pcout << "  momentum(end) = " << current_energy.momentum << "\n";
+    pcout << "  |momentum(end) - momentum(0)| = "
+          << (momentum_change.norm() < 1e-12 ? 0. : momentum_change.norm())
+          << std::endl;
+  }
+
+
+
+  template <int dim>
+  void
+  run(const std::string &filename, const MPI_Comm communicator)
+  {
+    ParameterHandler prm;
+    Parameters<dim>  parameters;
+    parameters.parse(filename, prm);
+    Simulator<dim> simulator(parameters, prm, filename, communicator);
+    simulator.run();
+  }
+
+
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+  template void
+  run<2>(const std::string &, const MPI_Comm);
+  template void
+  run<3>(const std::string &, const MPI_Comm);
+} // namespace grainmpm
