@@ -50,6 +50,10 @@ namespace grainmpm
     run();
 
   private:
+    /** The time loop of run(). */
+    void
+    advance_to_end_time();
+
     /** Time step from the CFL condition or the fixed value. */
     double
     compute_time_step(const double max_speed) const;
@@ -78,6 +82,8 @@ namespace grainmpm
     EnergySummary<dim>    current_energy;
     double                minimum_energy = 0.;
     double                maximum_energy = 0.;
+    /** sum_p m_p |v_p| at t = 0, the scale of momentum errors. */
+    double initial_momentum_scale = 0.;
   };
 
   /**

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Install what is missing, build grainmpm (Release) and run the whole test
+# suite. This is the README's test command and what CI runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/install-dependencies.sh
+export CCACHE_DIR="${CCACHE_DIR:-$HOME/.ccache}"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j2
+cd build
+ctest -j2 --output-on-failure

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// A small replacement for deal.II's tests/tests.h (which the Debian package
+// does not ship): deallog to the file "output", fixed number format, and a
+// filter for round-off zeros.
+
+#ifndef grainmpm_tests_tests_h
+#define grainmpm_tests_tests_h
+
+#include <deal.II/base/logstream.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+
+std::ofstream logfile("output");
+
+inline void
+initlog()
+{
+  dealii::deallog.attach(logfile);
+  dealii::deallog.depth_console(0);
+  logfile << std::setprecision(6);
+  dealii::deallog << std::setprecision(6);
+}
+
+/** x, or zero if |x| < tolerance: round-off zeros print as 0. */
+inline double
+filter_out_small_numbers(const double x, const double tolerance = 1e-12)
+{
+  return std::abs(x) < tolerance ? 0. : x;
+}
+
+#endif
