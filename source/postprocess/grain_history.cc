@@ -36,7 +36,7 @@ namespace grainmpm
     else
       file << ",angular_velocity_x [1/T],angular_velocity_y "
               "[1/T],angular_velocity_z [1/T]";
-    file << '\n' << std::flush;
+    file << ",max_distance [L]\n" << std::flush;
   }
 
 
@@ -89,7 +89,8 @@ namespace grainmpm
           particle.get_location() - motions[g].centre_of_mass;
         const Tensor<1, dim> v =
           Layout::get_velocity(properties) - motions[g].velocity;
-        double *sum = &second[g * n_second];
+        motions[g].max_distance = std::max(motions[g].max_distance, r.norm());
+        double *sum             = &second[g * n_second];
         if (dim == 2)
           {
             sum[0] += mass * (r[0] * v[1] - r[1] * v[0]);
@@ -109,6 +110,9 @@ namespace grainmpm
           }
       }
     Utilities::MPI::sum(second, communicator, second);
+    for (auto &motion : motions)
+      motion.max_distance =
+        Utilities::MPI::max(motion.max_distance, communicator);
     for (unsigned int g = 0; g < n_grains; ++g)
       {
         const double *sum = &second[g * n_second];
@@ -159,7 +163,7 @@ namespace grainmpm
           file << ',' << motions[g].velocity[d];
         for (unsigned int d = 0; d < (dim == 2 ? 1 : 3); ++d)
           file << ',' << motions[g].angular_velocity[d];
-        file << '\n';
+        file << ',' << motions[g].max_distance << '\n';
       }
     file << std::flush;
   }

@@ -28,6 +28,11 @@ namespace grainmpm
     Tensor<1, dim> velocity;
     /** Angular velocity about the centre of mass: the z component in 2D. */
     Tensor<1, dim == 2 ? 1 : 3> angular_velocity;
+    /**
+     * Largest distance of a material point from the centre of mass: a
+     * particle that spalls off the grain makes it grow beyond the radius.
+     */
+    double max_distance = 0.;
   };
 
   /**
