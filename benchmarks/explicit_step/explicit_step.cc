@@ -30,13 +30,14 @@ int
 main(int argc, char *argv[])
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const unsigned int n_cells  = argc > 1 ? std::stoi(argv[1]) : 512;
-  const unsigned int per_dir  = argc > 2 ? std::stoi(argv[2]) : 4;
-  const unsigned int n_steps  = argc > 3 ? std::stoi(argv[3]) : 10;
-  const double       h        = 1. / n_cells;
+  const unsigned int n_cells = argc > 1 ? std::stoi(argv[1]) : 512;
+  const unsigned int per_dir = argc > 2 ? std::stoi(argv[2]) : 4;
+  const unsigned int n_steps = argc > 3 ? std::stoi(argv[3]) : 10;
+  const double       h       = 1. / n_cells;
   const double       E = 1000., nu = 0.3, rho = 1.;
-  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-  const double dt     = 0.1 * h / std::sqrt((lambda + 2 * mu) / rho);
+  const double       lambda = E * nu / ((1 + nu) * (1 - 2 * nu)),
+               mu           = E / (2 * (1 + nu));
+  const double dt           = 0.1 * h / std::sqrt((lambda + 2 * mu) / rho);
 
   // The same block as the plain kernel: the cells inside [0.25, 0.75]^2.
   std::ostringstream prm_text;
@@ -60,13 +61,15 @@ main(int argc, char *argv[])
   prm.parse_input_from_string(prm_text.str());
   parameters.check();
 
-  BackgroundGrid<2>              grid(parameters.grid, MPI_COMM_WORLD);
-  Particles::ParticleHandler<2>  particle_handler(grid.get_triangulation(),
-                                                 grid.get_mapping(),
-                                                 MaterialPointLayout<2>::n_properties);
+  BackgroundGrid<2>             grid(parameters.grid, MPI_COMM_WORLD);
+  Particles::ParticleHandler<2> particle_handler(
+    grid.get_triangulation(),
+    grid.get_mapping(),
+    MaterialPointLayout<2>::n_properties);
   std::vector<std::unique_ptr<ConstitutiveModel<2>>> materials;
-  materials.emplace_back(create_constitutive_model<2>(
-    parameters.materials[0], parameters.physics.two_dimensional_model));
+  materials.emplace_back(
+    create_constitutive_model<2>(parameters.materials[0],
+                                 parameters.physics.two_dimensional_model));
   const auto grains =
     GrainGenerator<2>(parameters).generate(grid, particle_handler);
   ExplicitLeapfrog<2> stepper(parameters, grid, grains, materials);
@@ -89,13 +92,11 @@ main(int argc, char *argv[])
     particle_handler.sort_particles_into_subdomains_and_cells();
   const double sort_ns =
     1e9 *
-    std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                  sort_start)
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - sort_start)
       .count() /
     (n_particles * n_steps);
 
-  const auto plain =
-    benchmarks::run_plain_kernel(n_cells, per_dir, n_steps);
+  const auto plain = benchmarks::run_plain_kernel(n_cells, per_dir, n_steps);
 
   std::cout << "explicit step benchmark: " << n_cells << "^2 cells, "
             << static_cast<unsigned long>(n_particles) << " material points, "
@@ -107,8 +108,7 @@ main(int argc, char *argv[])
             << " ns/particle/step\n"
             << "  ratio:                     "
             << grainmpm_ns / plain.ns_per_particle_step << " (goal <= 3)\n"
-            << "  one full sort:             " << sort_ns
-            << " ns/particle\n"
+            << "  one full sort:             " << sort_ns << " ns/particle\n"
             << "  ratio with a sort every step: "
             << (grainmpm_ns + sort_ns) / plain.ns_per_particle_step << "\n";
   return 0;
