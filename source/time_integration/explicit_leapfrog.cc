@@ -151,16 +151,25 @@ namespace grainmpm
         ++p;
       });
 
-    layout.reinit_vector(velocities_p2g, dim);
+    velocities_from_momenta(velocities_p2g);
+    prescribe_rigid_velocities(velocities_p2g, time);
+  }
+
+
+
+  template <int dim>
+  void
+  ExplicitLeapfrog<dim>::velocities_from_momenta(VectorType &velocities) const
+  {
+    layout.reinit_vector(velocities, dim);
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
       {
         const double mass = masses.local_element(slot);
         if (mass > 0.)
           for (unsigned int d = 0; d < dim; ++d)
-            velocities_p2g.local_element(slot * dim + d) =
+            velocities.local_element(slot * dim + d) =
               momenta.local_element(slot * dim + d) / mass;
       }
-    prescribe_rigid_velocities(velocities_p2g, time);
   }
 
 
@@ -457,15 +466,7 @@ namespace grainmpm
                                 mass * shape * properties[Layout::velocity + d];
                           }
                       });
-    layout.reinit_vector(velocities_old, dim);
-    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
-      {
-        const double mass = masses.local_element(slot);
-        if (mass > 0.)
-          for (unsigned int d = 0; d < dim; ++d)
-            velocities_old.local_element(slot * dim + d) =
-              momenta.local_element(slot * dim + d) / mass;
-      }
+    velocities_from_momenta(velocities_old);
   }
 
 

@@ -129,6 +129,10 @@ namespace grainmpm
     unsigned int
     apply_constraints(VectorType &velocities);
 
+    /** v = p / m on slots with mass, zero elsewhere. */
+    void
+    velocities_from_momenta(VectorType &velocities) const;
+
     /** Set the slots of rigid fields to their prescribed velocity. */
     void
     prescribe_rigid_velocities(VectorType &velocities, const double time) const;
