@@ -110,21 +110,32 @@ main(int argc, char *argv[])
     {
       // Pattern mismatches and other parameter-file errors of deal.II: print
       // only the part that names the entry, not the source location.
-      // The file is named by its base name, as the user knows which file
-      // they passed (and so that test outputs do not depend on paths).
+      // deal.II names the file and line: add the subsection path, and name
+      // the file by its base name (the user knows which file they passed;
+      // test outputs must not depend on paths).
       std::ostringstream message;
       exception.print_info(message);
       std::string       text = message.str();
-      const std::size_t open = text.find("of file <");
-      if (open != std::string::npos)
+      std::string       where;
+      const std::size_t line_start = text.find("Line <");
+      const std::size_t open       = text.find("of file <");
+      if (line_start != std::string::npos && open != std::string::npos)
         {
-          const std::size_t close = text.find('>', open);
-          const std::size_t slash = text.rfind('/', close);
-          if (close != std::string::npos && slash != std::string::npos &&
-              slash > open)
-            text.erase(open + 9, slash + 1 - (open + 9));
+          const std::size_t  close = text.find('>', open);
+          const std::string  file  = text.substr(open + 9, close - open - 9);
+          const unsigned int line =
+            std::stoi(text.substr(line_start + 6, open - line_start - 6));
+          where = grainmpm::subsection_path_at_line(file, line);
+          const std::size_t slash = file.rfind('/');
+          if (slash != std::string::npos)
+            text.erase(open + 9, slash + 1);
         }
-      std::cerr << "\ngrainmpm: error in the input:\n" << text << std::endl;
+      if (!where.empty())
+        std::cerr << "\ngrainmpm: error in the input, in subsection " << where
+                  << ":\n"
+                  << text << std::endl;
+      else
+        std::cerr << "\ngrainmpm: error in the input:\n" << text << std::endl;
       return 1;
     }
   catch (const std::exception &exception)

@@ -887,6 +887,29 @@ namespace grainmpm
 
 
 
+  std::string
+  subsection_path_at_line(const std::string &filename, const unsigned int line)
+  {
+    std::ifstream            in(filename);
+    std::vector<std::string> stack;
+    std::string              text;
+    for (unsigned int number = 1; number < line && std::getline(in, text);
+         ++number)
+      {
+        text = strip_comment(text);
+        if (text.rfind("subsection ", 0) == 0)
+          stack.push_back(Utilities::trim(text.substr(11)));
+        else if (text == "end" && !stack.empty())
+          stack.pop_back();
+      }
+    std::string path;
+    for (const auto &name : stack)
+      path += (path.empty() ? "" : "/") + name;
+    return path;
+  }
+
+
+
   unsigned int
   read_dimension(const std::string &filename)
   {

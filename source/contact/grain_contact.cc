@@ -73,6 +73,15 @@ namespace grainmpm
 
 
 
+  namespace
+  {
+    // Passes of projection and momentum restoration at nodes where three or
+    // more deformable grains meet.
+    constexpr unsigned int max_projection_passes = 1000;
+  } // namespace
+
+
+
   template <int dim>
   bool
   GrainContact<dim>::project_node(const unsigned int    n_fields,
@@ -108,48 +117,77 @@ namespace grainmpm
     else
       return false;
 
-    bool corrected = false;
-    for (unsigned int k = 0; k < n_fields; ++k)
-      {
-        if (rigid[k] || !(masses[k] > 0.))
-          continue;
-        if (model == ContactModel::none)
-          {
-            // Single field: the deformable material sticks to a rigid body.
-            velocities[k] = reference_velocity;
-            corrected     = true;
+    // One pass of eq. (5) over the fields; returns whether one was corrected.
+    const auto project_once = [&]() {
+      bool corrected_in_pass = false;
+      for (unsigned int k = 0; k < n_fields; ++k)
+        {
+          if (rigid[k] || !(masses[k] > 0.))
             continue;
-          }
-        const Tensor<1, dim> &normal = normals[k];
-        if (normal.norm_square() == 0.)
-          continue;
-        const Tensor<1, dim> relative = velocities[k] - reference_velocity;
-        const double         approach = relative * normal; // D of eq. (5)
-        if (!(approach > 0.))
-          continue; // separating: free
-        Tensor<1, dim> correction = approach * normal;
-        if (model == ContactModel::coulomb_friction)
-          {
-            const Tensor<1, dim> tangential = relative - approach * normal;
-            const double         slip       = tangential.norm(); // C
-            if (slip > 0.)
-              {
-                // mu' = min(mu, C/D): stick removes all relative tangential
-                // velocity, slip reduces it by mu D.
-                const double effective =
-                  std::min(friction_coefficient, slip / approach);
-                correction += (effective * approach / slip) * tangential;
-              }
-          }
-        velocities[k] -= correction;
-        corrected = true;
-      }
+          if (model == ContactModel::none)
+            {
+              // Single field: deformable material sticks to a rigid body.
+              velocities[k]     = reference_velocity;
+              corrected_in_pass = true;
+              continue;
+            }
+          const Tensor<1, dim> &normal = normals[k];
+          if (normal.norm_square() == 0.)
+            continue;
+          const Tensor<1, dim> relative = velocities[k] - reference_velocity;
+          const double         approach = relative * normal; // D of eq. (5)
+          if (!(approach > 0.))
+            continue; // separating: free
+          Tensor<1, dim> correction = approach * normal;
+          if (model == ContactModel::coulomb_friction)
+            {
+              const Tensor<1, dim> tangential = relative - approach * normal;
+              const double         slip       = tangential.norm(); // C
+              if (slip > 0.)
+                {
+                  // mu' = min(mu, C/D): stick removes all relative
+                  // tangential velocity, slip reduces it by mu D.
+                  const double effective =
+                    std::min(friction_coefficient, slip / approach);
+                  correction += (effective * approach / slip) * tangential;
+                }
+            }
+          velocities[k] -= correction;
+          corrected_in_pass = true;
+        }
+      return corrected_in_pass;
+    };
 
-    // Three or more deformable fields: remove the momentum the
-    // corrections created by a common shift (two fields conserve it
-    // exactly by construction).
+    bool corrected = project_once();
+
+    // Two deformable fields (antiparallel normals) or a rigid partner: one
+    // pass conserves momentum, respectively is all there is. Three or more
+    // deformable fields: the normals cannot all be pairwise antiparallel and
+    // the pass changes the node's momentum. Remove that change by a common
+    // velocity shift and project again, until no field approaches and the
+    // momentum is restored (the state "all fields at v_cm" satisfies both,
+    // so the alternation has a fixed point; it converges in a few passes).
     if (corrected && rigid_field < 0 && n_deformable > 2)
       {
+        double velocity_scale = 0.;
+        for (unsigned int k = 0; k < n_fields; ++k)
+          velocity_scale =
+            std::max(velocity_scale,
+                     (velocities[k] - reference_velocity).norm());
+        for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
+          {
+            Tensor<1, dim> momentum_after;
+            for (unsigned int k = 0; k < n_fields; ++k)
+              momentum_after += masses[k] * velocities[k];
+            const Tensor<1, dim> shift =
+              (momentum_after - momentum_before) / total_mass;
+            for (unsigned int k = 0; k < n_fields; ++k)
+              if (masses[k] > 0.)
+                velocities[k] -= shift;
+            if (shift.norm() <= 1e-14 * velocity_scale || !project_once())
+              break;
+          }
+        // End on exact momentum: a last shift of round-off size.
         Tensor<1, dim> momentum_after;
         for (unsigned int k = 0; k < n_fields; ++k)
           momentum_after += masses[k] * velocities[k];

@@ -271,6 +271,15 @@ namespace grainmpm
   find_subsections(const std::string &filename, const std::string &parent);
 
   /**
+   * The subsection path ("Materials/elastic") in force at line @p line of
+   * the parameter file @p filename (not following `include`s, as line
+   * numbers count within one file). Empty at the top level. Used to name the
+   * entry of a pattern error, which deal.II reports by line only.
+   */
+  std::string
+  subsection_path_at_line(const std::string &filename, const unsigned int line);
+
+  /**
    * Read only the entry "Dimension" of @p filename.
    */
   unsigned int

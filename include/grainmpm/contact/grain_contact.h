@@ -34,9 +34,9 @@ namespace grainmpm
    * mu D >= |dv_t|, else slip by mu D). Receding fields are left alone.
    * With two deformable fields this conserves the node's momentum exactly.
    * With three or more the normals cannot all be pairwise antiparallel; the
-   * momentum the corrections then create is removed by one common velocity
-   * shift of all fields at the node, which keeps relative velocities, so
-   * momentum is conserved at every contact node.
+   * projection then alternates with a common velocity shift that restores
+   * the node's momentum, until no field approaches, so momentum is
+   * conserved at every contact node and no field is left approaching.
    */
   template <int dim>
   class GrainContact
