@@ -32,4 +32,15 @@ filter_out_small_numbers(const double x, const double tolerance = 1e-12)
   return std::abs(x) < tolerance ? 0. : x;
 }
 
+/**
+ * Portable uniform random numbers in [0, 1): a 64-bit linear congruential
+ * generator advancing @p state, the same on every platform.
+ */
+inline double
+uniform_random(unsigned long long &state)
+{
+  state = 6364136223846793005ULL * state + 1442695040888963407ULL;
+  return (state >> 11) * (1.0 / 9007199254740992.0);
+}
+
 #endif

@@ -174,28 +174,24 @@ namespace grainmpm
           velocity_scale =
             std::max(velocity_scale,
                      (velocities[k] - reference_velocity).norm());
+        // Shift all fields by the momentum change over the node mass;
+        // return the size of the shift.
+        const auto restore_momentum = [&]() {
+          Tensor<1, dim> momentum_after;
+          for (unsigned int k = 0; k < n_fields; ++k)
+            momentum_after += masses[k] * velocities[k];
+          const Tensor<1, dim> shift =
+            (momentum_after - momentum_before) / total_mass;
+          for (unsigned int k = 0; k < n_fields; ++k)
+            if (masses[k] > 0.)
+              velocities[k] -= shift;
+          return shift.norm();
+        };
         for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
-          {
-            Tensor<1, dim> momentum_after;
-            for (unsigned int k = 0; k < n_fields; ++k)
-              momentum_after += masses[k] * velocities[k];
-            const Tensor<1, dim> shift =
-              (momentum_after - momentum_before) / total_mass;
-            for (unsigned int k = 0; k < n_fields; ++k)
-              if (masses[k] > 0.)
-                velocities[k] -= shift;
-            if (shift.norm() <= 1e-14 * velocity_scale || !project_once())
-              break;
-          }
+          if (restore_momentum() <= 1e-14 * velocity_scale || !project_once())
+            break;
         // End on exact momentum: a last shift of round-off size.
-        Tensor<1, dim> momentum_after;
-        for (unsigned int k = 0; k < n_fields; ++k)
-          momentum_after += masses[k] * velocities[k];
-        const Tensor<1, dim> shift =
-          (momentum_after - momentum_before) / total_mass;
-        for (unsigned int k = 0; k < n_fields; ++k)
-          if (masses[k] > 0.)
-            velocities[k] -= shift;
+        restore_momentum();
       }
     return corrected;
   }

@@ -21,8 +21,7 @@ double
 uniform()
 {
   static unsigned long long state = 2026;
-  state = (6364136223846793005ULL * state + 1442695040888963407ULL);
-  return (state >> 11) * (1.0 / 9007199254740992.0);
+  return uniform_random(state);
 }
 
 template <int dim>
