@@ -209,8 +209,15 @@ namespace grainmpm
   {
     std::vector<double>         node_masses;
     std::vector<Tensor<1, dim>> node_normals, node_velocities;
-    std::unique_ptr<bool[]>     rigid_flags;
-    unsigned int                n_corrected = 0;
+    // Flags for the largest node, allocated once (std::vector<bool> has no
+    // data()).
+    unsigned int max_fields = 0;
+    for (const unsigned int node : layout.contact_nodes())
+      max_fields =
+        std::max(max_fields,
+                 layout.node_slots_end(node) - layout.node_slots_begin(node));
+    const std::unique_ptr<bool[]> rigid_flags(new bool[max_fields]);
+    unsigned int                  n_corrected = 0;
     for (const unsigned int node : layout.contact_nodes())
       {
         const unsigned int begin = layout.node_slots_begin(node);
@@ -218,7 +225,6 @@ namespace grainmpm
         node_masses.resize(n);
         node_normals.resize(n);
         node_velocities.resize(n);
-        rigid_flags.reset(new bool[n]);
         for (unsigned int k = 0; k < n; ++k)
           {
             node_masses[k]     = masses.local_element(begin + k);
