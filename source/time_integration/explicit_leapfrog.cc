@@ -7,6 +7,7 @@
 
 #include <deal.II/lac/vector.h>
 
+#include <algorithm>
 #include <sstream>
 
 namespace grainmpm
@@ -85,7 +86,7 @@ namespace grainmpm
     else
       compute_forces(particle_handler);
 
-    integrate_grid_velocities(time + dt, dt);
+    integrate_grid_velocities(dt);
     statistics.n_contact_nodes += apply_constraints(velocities_new);
     prescribe_rigid_velocities(velocities_new, time + dt);
 
@@ -179,6 +180,9 @@ namespace grainmpm
   ExplicitLeapfrog<dim>::prescribe_rigid_velocities(VectorType  &velocities,
                                                     const double time) const
   {
+    if (std::find(field_is_rigid.begin(), field_is_rigid.end(), true) ==
+        field_is_rigid.end())
+      return;
     Vector<double> value(dim);
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
       {
@@ -306,8 +310,7 @@ namespace grainmpm
 
   template <int dim>
   void
-  ExplicitLeapfrog<dim>::integrate_grid_velocities(const double /*time_new*/,
-                                                   const double dt)
+  ExplicitLeapfrog<dim>::integrate_grid_velocities(const double dt)
   {
     velocities_new = velocities_old;
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)

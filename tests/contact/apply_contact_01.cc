@@ -21,6 +21,8 @@
 
 #include "../tests.h"
 
+#include "../half_space_grains.h"
+
 using namespace grainmpm;
 
 template <int dim>
@@ -38,39 +40,20 @@ test()
                                         "y+: friction 0.5";
   parameters.check();
   BackgroundGrid<dim> grid(parameters, MPI_COMM_WORLD);
-  const double        h = grid.cell_size()[0];
 
   // Grain 0 (mass 1 per point) in x < 0.375 moving with (1, 0.3, 0.1),
   // grain 1 (mass 3) in x > 0.375 moving with (-0.5, 0, 0).
   Particles::ParticleHandler<dim> particle_handler(grid.get_triangulation(),
                                                    grid.get_mapping(),
                                                    Layout::n_properties);
-  std::vector<double>             properties(Layout::n_properties, 0.);
-  types::particle_index           id = 0;
-  for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-    for (unsigned int q = 0; q < n_v; ++q)
-      {
-        Point<dim> reference, x;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            reference[d] = ((q >> d) & 1U) ? 0.75 : 0.25;
-            x[d]         = cell->vertex(0)[d] + h * reference[d];
-          }
-        const unsigned int grain = (x[0] < 0.375 ? 0 : 1);
-        std::fill(properties.begin(), properties.end(), 0.);
-        properties[Layout::mass]     = (grain == 0 ? 1. : 3.);
-        properties[Layout::grain]    = grain;
-        properties[Layout::velocity] = (grain == 0 ? 1. : -0.5);
-        if (grain == 0)
-          {
-            properties[Layout::velocity + 1] = 0.3;
-            if (dim == 3)
-              properties[Layout::velocity + 2] = 0.1;
-          }
-        particle_handler.insert_particle(
-          x, reference, id++, cell, make_array_view(properties));
-      }
-  particle_handler.update_cached_numbers();
+  Tensor<1, dim>                  velocity_0, velocity_1;
+  velocity_0[0] = 1.;
+  velocity_0[1] = 0.3;
+  if (dim == 3)
+    velocity_0[dim - 1] = 0.1;
+  velocity_1[0] = -0.5;
+  insert_half_space_grains(
+    grid, particle_handler, 0.375, velocity_0, velocity_1);
 
   TransferCache<dim> cache;
   cache.reinit(grid, particle_handler, {0, 1});

@@ -20,6 +20,8 @@
 
 #include "../tests.h"
 
+#include "../half_space_grains.h"
+
 using namespace grainmpm;
 
 template <int dim>
@@ -38,31 +40,14 @@ test()
   parameters.check();
   BackgroundGrid<dim> grid(parameters, MPI_COMM_WORLD);
   const double        x_s = 0.375;
-  const double        h   = grid.cell_size()[0];
 
   // 2^dim regular points per cell everywhere: grain 0 (mass 1 per point)
   // where x < x_s, grain 1 (mass 3 per point) where x > x_s.
   Particles::ParticleHandler<dim> particle_handler(grid.get_triangulation(),
                                                    grid.get_mapping(),
                                                    Layout::n_properties);
-  std::vector<double>             properties(Layout::n_properties, 0.);
-  types::particle_index           id = 0;
-  for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-    for (unsigned int q = 0; q < n_v; ++q)
-      {
-        Point<dim> reference, x;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            reference[d] = ((q >> d) & 1U) ? 0.75 : 0.25;
-            x[d]         = cell->vertex(0)[d] + h * reference[d];
-          }
-        const unsigned int grain  = (x[0] < x_s ? 0 : 1);
-        properties[Layout::mass]  = (grain == 0 ? 1. : 3.);
-        properties[Layout::grain] = grain;
-        particle_handler.insert_particle(
-          x, reference, id++, cell, make_array_view(properties));
-      }
-  particle_handler.update_cached_numbers();
+  insert_half_space_grains(
+    grid, particle_handler, x_s, Tensor<1, dim>(), Tensor<1, dim>());
 
   TransferCache<dim> cache;
   cache.reinit(grid, particle_handler, {0, 1});

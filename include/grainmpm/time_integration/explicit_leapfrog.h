@@ -123,7 +123,7 @@ namespace grainmpm
 
     /** v^L = v + dt f / m on deformable slots; rigid slots prescribed. */
     void
-    integrate_grid_velocities(const double time_new, const double dt);
+    integrate_grid_velocities(const double dt);
 
     /** Contact and walls on @p velocities. */
     unsigned int
