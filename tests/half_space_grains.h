@@ -28,9 +28,9 @@ insert_half_space_grains(const grainmpm::BackgroundGrid<dim>     &grid,
                          const dealii::Tensor<1, dim>            &velocity_0,
                          const dealii::Tensor<1, dim>            &velocity_1)
 {
-  using Layout = grainmpm::MaterialPointLayout<dim>;
-  const double          h = grid.cell_size()[0];
-  std::vector<double>   properties(Layout::n_properties, 0.);
+  using Layout                    = grainmpm::MaterialPointLayout<dim>;
+  const double                  h = grid.cell_size()[0];
+  std::vector<double>           properties(Layout::n_properties, 0.);
   dealii::types::particle_index id = 0;
   for (const auto &cell : grid.get_triangulation().active_cell_iterators())
     for (unsigned int q = 0; q < (1U << dim); ++q)
