@@ -71,7 +71,7 @@ namespace grainmpm
     Particles::ParticleHandler<dim>                      particle_handler;
     std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
     std::vector<GrainInfo<dim>>                          grains;
-    std::unique_ptr<ExplicitLeapfrog<dim>>               stepper;
+    std::unique_ptr<TimeIntegrator<dim>>                 stepper;
     std::unique_ptr<OutputWriter<dim>>                   output_writer;
     std::unique_ptr<EnergyHistory<dim>>                  energy_history;
     std::unique_ptr<GrainHistory<dim>>                   grain_history;

@@ -209,9 +209,9 @@ namespace grainmpm
 
   template <int dim>
   void
-  OutputWriter<dim>::write_grid(const ExplicitLeapfrog<dim> &stepper,
-                                const double                 time,
-                                const unsigned int           index)
+  OutputWriter<dim>::write_grid(const TimeIntegrator<dim> &stepper,
+                                const double               time,
+                                const unsigned int         index)
   {
     const auto &layout     = stepper.get_layout();
     const auto &masses     = stepper.get_masses();

@@ -1,57 +1,22 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-#include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/explicit_leapfrog.h>
 
 #include <deal.II/lac/vector.h>
 
-#include <algorithm>
-#include <sstream>
 
 namespace grainmpm
 {
-  namespace
-  {
-    const char *const face_names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
-    const char *const boundary_type_names[4] = {"free slip",
-                                                "no slip",
-                                                "friction",
-                                                "open"};
-  } // namespace
-
-
-
   template <int dim>
   ExplicitLeapfrog<dim>::ExplicitLeapfrog(
     const Parameters<dim>                                      &parameters,
     const BackgroundGrid<dim>                                  &grid,
     const std::vector<GrainInfo<dim>>                          &grains,
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
-    : parameters(parameters)
-    , grid(grid)
-    , grains(grains)
-    , materials(materials)
-    , field_of_grain(grains.size())
-    , field_is_rigid(grains.size(), false)
-    , contact(parameters.contact, grid, field_is_rigid)
-  {
-    // Every grain has its own field, except with 'Contact model = none',
-    // where all deformable grains share the field of the first of them.
-    int shared_field = -1;
-    for (unsigned int g = 0; g < grains.size(); ++g)
-      {
-        field_of_grain[g] = g;
-        field_is_rigid[g] = grains[g].rigid;
-        if (parameters.contact.model == ContactModel::none && !grains[g].rigid)
-          {
-            if (shared_field < 0)
-              shared_field = g;
-            field_of_grain[g] = shared_field;
-          }
-      }
-  }
+    : TimeIntegrator<dim>(parameters, grid, grains, materials)
+  {}
 
 
 
@@ -65,14 +30,7 @@ namespace grainmpm
     StepStatistics statistics;
 
     // Everything that depends only on the positions at t^n, once per step.
-    cache.reinit(grid, particle_handler, field_of_grain);
-    layout.reinit(cache,
-                  grid.n_nodes(),
-                  grid.get_triangulation().get_communicator());
-    node_in_contact.assign(grid.n_nodes(), 0);
-
-    particles_to_grid(particle_handler, time);
-    contact.compute_normals(layout, mass_gradients, normals);
+    this->begin_step(particle_handler, time);
 
     velocities_old = velocities_p2g;
     if (parameters.time_stepping.stress_update == StressUpdate::usf)
@@ -90,7 +48,8 @@ namespace grainmpm
     statistics.n_contact_nodes += apply_constraints(velocities_new);
     prescribe_rigid_velocities(velocities_new, time + dt);
 
-    grid_to_particles(particle_handler, time, dt, statistics);
+    this->grid_to_particles(
+      particle_handler, velocities_new, time, dt, statistics);
 
     if (parameters.time_stepping.stress_update == StressUpdate::musl)
       {
@@ -100,113 +59,8 @@ namespace grainmpm
         update_stresses(particle_handler, velocities_old, dt);
       }
 
-    // Positions are final: drop particles that left through open faces,
-    // and sort only if some particle changed cells.
-    statistics.n_removed = particles_to_remove.size();
-    if (!particles_to_remove.empty())
-      {
-        particle_handler.remove_particles(particles_to_remove);
-        particles_to_remove.clear();
-        statistics.sorted = true;
-      }
-    if (statistics.sorted)
-      particle_handler.sort_particles_into_subdomains_and_cells();
+    this->finish_step(particle_handler, statistics);
     return statistics;
-  }
-
-
-
-  template <int dim>
-  void
-  ExplicitLeapfrog<dim>::particles_to_grid(
-    Particles::ParticleHandler<dim> &particle_handler,
-    const double                     time)
-  {
-    using Layout = MaterialPointLayout<dim>;
-    constexpr unsigned int per_particle =
-      TransferCache<dim>::nodes_per_particle;
-    layout.reinit_vector(masses, 1);
-    layout.reinit_vector(momenta, dim);
-    layout.reinit_vector(mass_gradients, dim);
-
-    std::size_t p = 0;
-    for_each_particle(
-      grid, particle_handler, [&](const auto &, auto &particle) {
-        const auto         properties = particle->get_properties();
-        const double       mass       = properties[Layout::mass];
-        const unsigned int offset     = p * per_particle;
-        for (unsigned int v = 0; v < per_particle; ++v)
-          {
-            const unsigned int    slot     = cache.slots[offset + v];
-            const double          shape    = cache.shape_values[offset + v];
-            const Tensor<1, dim> &gradient = cache.shape_gradients[offset + v];
-            masses.local_element(slot) += mass * shape;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                momenta.local_element(slot * dim + d) +=
-                  mass * shape * properties[Layout::velocity + d];
-                mass_gradients.local_element(slot * dim + d) +=
-                  mass * gradient[d];
-              }
-          }
-        ++p;
-      });
-
-    velocities_from_momenta(velocities_p2g);
-    prescribe_rigid_velocities(velocities_p2g, time);
-  }
-
-
-
-  template <int dim>
-  void
-  ExplicitLeapfrog<dim>::velocities_from_momenta(VectorType &velocities) const
-  {
-    layout.reinit_vector(velocities, dim);
-    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
-      {
-        const double mass = masses.local_element(slot);
-        if (mass > 0.)
-          for (unsigned int d = 0; d < dim; ++d)
-            velocities.local_element(slot * dim + d) =
-              momenta.local_element(slot * dim + d) / mass;
-      }
-  }
-
-
-
-  template <int dim>
-  void
-  ExplicitLeapfrog<dim>::prescribe_rigid_velocities(VectorType  &velocities,
-                                                    const double time) const
-  {
-    if (std::find(field_is_rigid.begin(), field_is_rigid.end(), true) ==
-        field_is_rigid.end())
-      return;
-    Vector<double> value(dim);
-    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
-      {
-        const unsigned int field = layout.field(slot);
-        if (!field_is_rigid[field])
-          continue;
-        FunctionParser<dim> &function = *grains[field].prescribed_velocity;
-        function.set_time(time);
-        function.vector_value(grid.node_position(layout.node(slot)), value);
-        for (unsigned int d = 0; d < dim; ++d)
-          velocities.local_element(slot * dim + d) = value[d];
-      }
-  }
-
-
-
-  template <int dim>
-  unsigned int
-  ExplicitLeapfrog<dim>::apply_constraints(VectorType &velocities)
-  {
-    const unsigned int n_contact = contact.apply_contact(
-      layout, masses, normals, velocities, node_in_contact);
-    contact.apply_walls(layout, velocities);
-    return n_contact;
   }
 
 
@@ -321,124 +175,6 @@ namespace grainmpm
             velocities_new.local_element(slot * dim + d) +=
               dt * forces.local_element(slot * dim + d) / mass;
       }
-  }
-
-
-
-  template <int dim>
-  void
-  ExplicitLeapfrog<dim>::grid_to_particles(
-    Particles::ParticleHandler<dim> &particle_handler,
-    const double                     time,
-    const double                     dt,
-    StepStatistics                  &statistics)
-  {
-    using Layout = MaterialPointLayout<dim>;
-    constexpr unsigned int per_particle =
-      TransferCache<dim>::nodes_per_particle;
-    const double          flip  = parameters.time_stepping.flip_fraction;
-    const Tensor<1, dim> &h     = grid.cell_size();
-    const Point<dim>     &lower = grid.lower_corner();
-    const Point<dim>     &upper = grid.upper_corner();
-    Vector<double>        prescribed(dim);
-    double                max_speed_square = 0.;
-
-    std::size_t p = 0;
-    for_each_particle(
-      grid, particle_handler, [&](const auto &, auto &particle) {
-        const unsigned int offset = p * per_particle;
-        ++p;
-        auto               properties   = particle->get_properties();
-        const unsigned int grain        = Layout::get_grain(properties);
-        const Point<dim>   old_position = particle->get_location();
-        Point<dim>         new_position;
-        Tensor<1, dim>     new_velocity;
-
-        if (grains[grain].rigid)
-          {
-            // Rigid grains follow their prescribed velocity (midpoint rule).
-            FunctionParser<dim> &function = *grains[grain].prescribed_velocity;
-            function.set_time(time + 0.5 * dt);
-            function.vector_value(old_position, prescribed);
-            for (unsigned int d = 0; d < dim; ++d)
-              new_position[d] = old_position[d] + dt * prescribed[d];
-            function.set_time(time + dt);
-            function.vector_value(new_position, prescribed);
-            for (unsigned int d = 0; d < dim; ++d)
-              new_velocity[d] = prescribed[d];
-          }
-        else
-          {
-            // FLIP: v_p += sum_i S_ip (v_i^L - v_i^n); PIC: v_p = sum S v^L;
-            // x_p += dt sum_i S_ip v_i^L.
-            Tensor<1, dim> increment, interpolated;
-            for (unsigned int v = 0; v < per_particle; ++v)
-              {
-                const unsigned int slot  = cache.slots[offset + v];
-                const double       shape = cache.shape_values[offset + v];
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    const double v_new =
-                      velocities_new.local_element(slot * dim + d);
-                    interpolated[d] += shape * v_new;
-                    increment[d] +=
-                      shape *
-                      (v_new - velocities_p2g.local_element(slot * dim + d));
-                  }
-              }
-            new_velocity =
-              flip * (Layout::get_velocity(properties) + increment) +
-              (1. - flip) * interpolated;
-            new_position = old_position + dt * interpolated;
-          }
-        Layout::set_velocity(new_velocity, properties);
-        max_speed_square =
-          std::max(max_speed_square, new_velocity.norm_square());
-
-        // Leaving the box: removed through an open face, an error otherwise.
-        for (unsigned int d = 0; d < dim; ++d)
-          if (new_position[d] < lower[d] || new_position[d] > upper[d])
-            {
-              const unsigned int face =
-                2 * d + (new_position[d] > upper[d] ? 1 : 0);
-              const BoundaryCondition &condition =
-                grid.boundary_condition(face);
-              if (condition.type == BoundaryType::open)
-                {
-                  particles_to_remove.push_back(particle);
-                  return;
-                }
-              std::ostringstream message;
-              message << "particle " << particle->get_id() << " of grain "
-                      << grain + 1 << " (" << parameters.grains[grain].source
-                      << ") left the background grid through the closed face "
-                      << face_names[face] << " ("
-                      << boundary_type_names[static_cast<int>(condition.type)]
-                      << ") at position (";
-              for (unsigned int e = 0; e < dim; ++e)
-                message << (e > 0 ? ", " : "") << new_position[e];
-              message << ") at time " << time + dt
-                      << ". Enlarge the grid (Background grid/Lower corner, "
-                         "Upper corner) or make that face open (Background "
-                         "grid/Boundary conditions).";
-              throw InputError("", message.str());
-            }
-
-        // Stay in the cell if possible: then no sort is needed.
-        Point<dim> reference = particle->get_reference_location();
-        bool       inside    = true;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            reference[d] += (new_position[d] - old_position[d]) / h[d];
-            inside = inside && reference[d] >= 0. && reference[d] <= 1.;
-          }
-        particle->set_location(new_position);
-        if (inside)
-          particle->set_reference_location(reference);
-        else
-          statistics.sorted = true;
-      });
-    statistics.max_speed = std::sqrt(max_speed_square);
   }
 
 

@@ -185,9 +185,27 @@ namespace grainmpm
   /**
    * Subsection "Time stepping".
    */
+  /**
+   * The time integration schemes of DESIGN.md section 5.
+   */
+  enum class TimeSteppingScheme
+  {
+    explicit_leapfrog,
+    implicit_theta
+  };
+
   struct TimeSteppingParameters
   {
-    std::string  scheme                  = "explicit leapfrog";
+    std::string        scheme_text = "explicit leapfrog";
+    TimeSteppingScheme scheme      = TimeSteppingScheme::explicit_leapfrog;
+    /** Centring parameter of the implicit scheme, in [1/2, 1]. */
+    double theta = 0.5;
+    /** Smallest step the implicit failure policy may cut to (0: auto). */
+    double minimum_time_step = 0.;
+    /** Cut dt on a failed implicit step and grow it back afterwards. */
+    bool adaptive_time_stepping = true;
+    /** Consecutive easy steps before dt is doubled back. */
+    unsigned int steps_before_growth     = 5;
     std::string  stress_update_text      = "USF";
     StressUpdate stress_update           = StressUpdate::usf;
     double       end_time                = 1.;
@@ -196,6 +214,79 @@ namespace grainmpm
     std::string  velocity_update         = "FLIP";
     double       flip_fraction           = 1.;
     unsigned int maximum_number_of_steps = 100000000;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
+   * How the Newton residual is made dimensionless.
+   */
+  enum class ResidualScale
+  {
+    initial_residual,
+    physical
+  };
+
+  /**
+   * How the finite-difference step of the Jacobian-vector product is chosen
+   * (reference/physics.md section 5.4).
+   */
+  enum class DifferencingStep
+  {
+    pernice_walker,
+    knoll_keyes
+  };
+
+  /**
+   * Subsection "Nonlinear solver": the inexact Newton iteration of the
+   * implicit scheme.
+   */
+  struct NonlinearSolverParameters
+  {
+    double           tolerance            = 1e-6;
+    std::string      residual_scale_text  = "initial residual";
+    ResidualScale    residual_scale       = ResidualScale::initial_residual;
+    double           velocity_scale       = 0.;
+    double           absolute_tolerance   = 1e-12;
+    unsigned int     max_iterations       = 20;
+    std::string      forcing_text         = "Eisenstat-Walker";
+    bool             eisenstat_walker     = true;
+    double           forcing_constant     = 1e-2;
+    double           forcing_maximum      = 0.9;
+    double           forcing_gamma        = 0.9;
+    double           forcing_alpha        = 2.;
+    std::string      differencing_text    = "Pernice-Walker";
+    DifferencingStep differencing         = DifferencingStep::pernice_walker;
+    double           differencing_error   = 0.;
+    bool             line_search          = true;
+    unsigned int     max_line_search_cuts = 10;
+    unsigned int     max_status_changes   = 5;
+    std::string      initial_guess_text   = "old velocity";
+    bool             explicit_predictor   = false;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
+   * Subsection "Linear solver": the Krylov solver of each Newton step and
+   * its preconditioner.
+   */
+  struct LinearSolverParameters
+  {
+    std::string  solver_text         = "GMRES";
+    bool         flexible            = false;
+    unsigned int restart_length      = 30;
+    unsigned int max_iterations      = 200;
+    std::string  preconditioner_text = "probed Jacobi";
+    bool         probed_jacobi       = true;
+    double       jacobi_weight       = 1.;
+    unsigned int jacobi_sweeps       = 1;
 
     void
     declare(ParameterHandler &prm);
@@ -236,6 +327,8 @@ namespace grainmpm
     unsigned int                      particles_per_cell = 2;
     ContactParameters                 contact;
     TimeSteppingParameters            time_stepping;
+    NonlinearSolverParameters         nonlinear_solver;
+    LinearSolverParameters            linear_solver;
     OutputParameters                  output;
 
     /**

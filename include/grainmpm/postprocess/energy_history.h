@@ -6,7 +6,7 @@
 
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
-#include <grainmpm/time_integration/explicit_leapfrog.h>
+#include <grainmpm/time_integration/time_integrator.h>
 
 #include <deal.II/particles/particle_handler.h>
 

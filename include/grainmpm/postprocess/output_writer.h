@@ -6,7 +6,7 @@
 
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
-#include <grainmpm/time_integration/explicit_leapfrog.h>
+#include <grainmpm/time_integration/time_integrator.h>
 
 #include <deal.II/dofs/dof_handler.h>
 
@@ -59,9 +59,9 @@ namespace grainmpm
 
     /** Write the grid fields of the last step of @p stepper. */
     void
-    write_grid(const ExplicitLeapfrog<dim> &stepper,
-               const double                 time,
-               const unsigned int           index);
+    write_grid(const TimeIntegrator<dim> &stepper,
+               const double               time,
+               const unsigned int         index);
 
   private:
     const OutputParameters                     &parameters;

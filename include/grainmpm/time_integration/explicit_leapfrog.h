@@ -4,39 +4,11 @@
 #ifndef grainmpm_time_integration_explicit_leapfrog_h
 #define grainmpm_time_integration_explicit_leapfrog_h
 
-#include <grainmpm/base/parameters.h>
-#include <grainmpm/contact/grain_contact.h>
-#include <grainmpm/grid/background_grid.h>
-#include <grainmpm/materials/constitutive_model.h>
-#include <grainmpm/particles/grain_generator.h>
-#include <grainmpm/transfer/grain_field_layout.h>
-#include <grainmpm/transfer/transfer_cache.h>
-
-#include <deal.II/lac/la_parallel_vector.h>
-
-#include <deal.II/particles/particle_handler.h>
-
-#include <memory>
-#include <vector>
+#include <grainmpm/time_integration/time_integrator.h>
 
 namespace grainmpm
 {
   using namespace dealii;
-
-  /**
-   * What one step did.
-   */
-  struct StepStatistics
-  {
-    /** Contact nodes where the projection corrected a field. */
-    unsigned int n_contact_nodes = 0;
-    /** Particles removed through open faces in this step. */
-    types::particle_index n_removed = 0;
-    /** Largest particle speed after the step. */
-    double max_speed = 0.;
-    /** True if some particle changed cells and the handler was sorted. */
-    bool sorted = false;
-  };
 
   /**
    * The explicit leapfrog step of seed eqs. (7)-(10) on the multi-grain
@@ -54,10 +26,10 @@ namespace grainmpm
    * choice of reference/physics.md section 3.7).
    */
   template <int dim>
-  class ExplicitLeapfrog
+  class ExplicitLeapfrog : public TimeIntegrator<dim>
   {
   public:
-    using VectorType = LinearAlgebra::distributed::Vector<double>;
+    using VectorType = typename TimeIntegrator<dim>::VectorType;
 
     ExplicitLeapfrog(
       const Parameters<dim>                                      &parameters,
@@ -65,49 +37,12 @@ namespace grainmpm
       const std::vector<GrainInfo<dim>>                          &grains,
       const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
 
-    /**
-     * Advance the particles of @p particle_handler from @p time by @p dt.
-     * Throws InputError if a particle leaves the grid through a closed face.
-     */
     StepStatistics
     advance(Particles::ParticleHandler<dim> &particle_handler,
             const double                     time,
-            const double                     dt);
-
-    /** The slot layout of the last step. */
-    const GrainFieldLayout<dim> &
-    get_layout() const
-    {
-      return layout;
-    }
-
-    /** Slot masses of the last step. */
-    const VectorType &
-    get_masses() const
-    {
-      return masses;
-    }
-
-    /** Slot velocities at the end of the last step (v^L). */
-    const VectorType &
-    get_velocities() const
-    {
-      return velocities_new;
-    }
-
-    /** 1 for nodes where contact corrected a field in the last step. */
-    const std::vector<unsigned char> &
-    get_node_contact_flags() const
-    {
-      return node_in_contact;
-    }
+            const double                     dt) override;
 
   private:
-    /** Mass, momentum and mass gradient per slot; v^n = p/m. */
-    void
-    particles_to_grid(Particles::ParticleHandler<dim> &particle_handler,
-                      const double                     time);
-
     /**
      * Strain increment dt grad v from @p grid_velocities, new stress,
      * deformation gradient and volume of every deformable particle.
@@ -125,58 +60,28 @@ namespace grainmpm
     void
     integrate_grid_velocities(const double dt);
 
-    /** Contact and walls on @p velocities. */
-    unsigned int
-    apply_constraints(VectorType &velocities);
-
-    /** v = p / m on slots with mass, zero elsewhere. */
-    void
-    velocities_from_momenta(VectorType &velocities) const;
-
-    /** Set the slots of rigid fields to their prescribed velocity. */
-    void
-    prescribe_rigid_velocities(VectorType &velocities, const double time) const;
-
-    /**
-     * FLIP/PIC velocity and position update; records particles that left
-     * through open faces and whether the handler needs sorting.
-     */
-    void
-    grid_to_particles(Particles::ParticleHandler<dim> &particle_handler,
-                      const double                     time,
-                      const double                     dt,
-                      StepStatistics                  &statistics);
-
     /** Velocities remapped from the particle momenta (MUSL). */
     void
     remap_velocities(Particles::ParticleHandler<dim> &particle_handler);
 
-    const Parameters<dim>                                      &parameters;
-    const BackgroundGrid<dim>                                  &grid;
-    const std::vector<GrainInfo<dim>>                          &grains;
-    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
+    using TimeIntegrator<dim>::parameters;
+    using TimeIntegrator<dim>::grid;
+    using TimeIntegrator<dim>::grains;
+    using TimeIntegrator<dim>::materials;
+    using TimeIntegrator<dim>::field_is_rigid;
+    using TimeIntegrator<dim>::cache;
+    using TimeIntegrator<dim>::layout;
+    using TimeIntegrator<dim>::masses;
+    using TimeIntegrator<dim>::momenta;
+    using TimeIntegrator<dim>::velocities_p2g;
+    using TimeIntegrator<dim>::velocities_new;
+    using TimeIntegrator<dim>::apply_constraints;
+    using TimeIntegrator<dim>::prescribe_rigid_velocities;
+    using TimeIntegrator<dim>::velocities_from_momenta;
 
-    std::vector<unsigned int> field_of_grain;
-    std::vector<bool>         field_is_rigid;
-    GrainContact<dim>         contact;
-    TransferCache<dim>        cache;
-    GrainFieldLayout<dim>     layout;
-
-    VectorType masses;
-    VectorType momenta;
-    VectorType mass_gradients;
-    VectorType normals;
     VectorType forces;
-    /** v^n from P2G (uncorrected): the FLIP reference. */
-    VectorType velocities_p2g;
     /** v^n after contact and walls (USF strain velocity). */
     VectorType velocities_old;
-    /** v^L after contact and walls. */
-    VectorType velocities_new;
-
-    std::vector<unsigned char> node_in_contact;
-    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
-      particles_to_remove;
   };
 } // namespace grainmpm
 
