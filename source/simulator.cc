@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
+#include <sstream>
 
 namespace grainmpm
 {
@@ -104,11 +106,17 @@ namespace grainmpm
     {
       TimerOutput::Scope  scope(timer, "setup");
       GrainGenerator<dim> generator(parameters);
-      grains  = generator.generate(grid, particle_handler);
-      stepper = std::make_unique<ExplicitLeapfrog<dim>>(parameters,
-                                                        grid,
-                                                        grains,
-                                                        materials);
+      grains = generator.generate(grid, particle_handler);
+      if (parameters.time_stepping.scheme == TimeSteppingScheme::implicit_theta)
+        stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
+                                                       grid,
+                                                       grains,
+                                                       materials);
+      else
+        stepper = std::make_unique<ExplicitLeapfrog<dim>>(parameters,
+                                                          grid,
+                                                          grains,
+                                                          materials);
       output_writer =
         std::make_unique<OutputWriter<dim>>(parameters.output, grid);
       energy_history =
@@ -157,19 +165,94 @@ namespace grainmpm
     const double end_time        = parameters.time_stepping.end_time;
     const double output_interval = parameters.output.interval;
     double       next_output     = output_interval;
+    const bool   implicit =
+      parameters.time_stepping.scheme == TimeSteppingScheme::implicit_theta;
     DiscreteTime time(0., end_time, compute_time_step(max_speed));
+    const double minimum_time_step =
+      parameters.time_stepping.minimum_time_step > 0. ?
+        parameters.time_stepping.minimum_time_step :
+        time.get_next_step_size() / 1024.;
+    // The failure policy of DESIGN.md section 5: the step cut after failed
+    // solves (0: none), and the easy steps since the last cut.
+    double       step_limit      = 0.;
+    unsigned int easy_steps      = 0;
     unsigned int n_contact_steps = 0;
     while (!time.is_at_end() &&
            time.get_step_number() <
              parameters.time_stepping.maximum_number_of_steps)
       {
         StepStatistics statistics;
-        {
-          TimerOutput::Scope scope(timer, "explicit step");
-          statistics = stepper->advance(particle_handler,
-                                        time.get_current_time(),
-                                        time.get_next_step_size());
-        }
+        unsigned int   rejected_attempts = 0;
+        for (;;)
+          {
+            {
+              TimerOutput::Scope scope(timer,
+                                       implicit ? "implicit step" :
+                                                  "explicit step");
+              statistics = stepper->advance(particle_handler,
+                                            time.get_current_time(),
+                                            time.get_next_step_size());
+            }
+            implicit_totals.residual_evaluations +=
+              statistics.residual_evaluations;
+            if (statistics.converged)
+              break;
+
+            // Rejected: the particles are untouched; halve dt and retry.
+            ++rejected_attempts;
+            ++implicit_totals.rejected;
+            const double failed_step = time.get_next_step_size();
+            pcout << "  step " << time.get_step_number() + 1
+                  << " at t = " << time.get_current_time()
+                  << " rejected with dt = " << failed_step << ": "
+                  << statistics.failure << std::endl;
+            if (!parameters.time_stepping.adaptive_time_stepping ||
+                0.5 * failed_step < minimum_time_step)
+              {
+                write_output(time.get_step_number(),
+                             time.get_current_time(),
+                             time.get_previous_step_size());
+                std::ostringstream message;
+                message
+                  << "the implicit step from t = " << time.get_current_time()
+                  << " failed with dt = " << failed_step << " ("
+                  << statistics.failure << ") and "
+                  << (parameters.time_stepping.adaptive_time_stepping ?
+                        "halving it would go below the minimum time step " +
+                          std::to_string(minimum_time_step) :
+                        std::string("adaptive time stepping is off"))
+                  << ". Lower Time stepping/CFL number or Time step, or "
+                     "raise Nonlinear solver/Maximum Newton iterations. "
+                     "Output up to t = "
+                  << time.get_current_time() << " is complete in "
+                  << parameters.output.directory << ".";
+                throw InputError("Time stepping/Minimum time step",
+                                 message.str());
+              }
+            step_limit = 0.5 * failed_step;
+            easy_steps = 0;
+            time.set_desired_next_step_size(step_limit);
+          }
+        statistics.rejected = rejected_attempts;
+        if (implicit)
+          {
+            implicit_totals.newton_iterations += statistics.newton_iterations;
+            implicit_totals.linear_iterations += statistics.linear_iterations;
+            implicit_totals.max_newton_iterations =
+              std::max(implicit_totals.max_newton_iterations,
+                       statistics.newton_iterations);
+            implicit_totals.smallest_step =
+              std::min(implicit_totals.smallest_step,
+                       time.get_next_step_size());
+            // Grow a cut step back after easy steps.
+            if (step_limit > 0. && 2 * statistics.newton_iterations <=
+                                     parameters.nonlinear_solver.max_iterations)
+              if (++easy_steps >= parameters.time_stepping.steps_before_growth)
+                {
+                  step_limit *= 2.;
+                  easy_steps = 0;
+                }
+          }
         time.advance_time();
         n_removed += statistics.n_removed;
         if (statistics.n_contact_nodes > 0)
@@ -209,8 +292,14 @@ namespace grainmpm
                                         time.get_previous_step_size());
           }
         if (!time.is_at_end())
-          time.set_desired_next_step_size(
-            compute_time_step(statistics.max_speed));
+          {
+            double next_step = compute_time_step(statistics.max_speed);
+            if (step_limit > 0. && step_limit < next_step)
+              next_step = step_limit;
+            else
+              step_limit = 0.;
+            time.set_desired_next_step_size(next_step);
+          }
       }
 
     // Final summary: O(1) numbers, fit for the regression tests. Energies
@@ -235,6 +324,26 @@ namespace grainmpm
           << current_energy.kinetic / reference << "\n"
           << "  E_el(end) / " << scale << " = "
           << current_energy.elastic / reference << "\n";
+    if (implicit)
+      {
+        const double steps = std::max(1U, time.get_step_number());
+        pcout << "  Newton iterations per step (mean, max): "
+              << implicit_totals.newton_iterations / steps << ", "
+              << implicit_totals.max_newton_iterations << "\n"
+              << "  linear iterations per Newton iteration: "
+              << (implicit_totals.newton_iterations > 0 ?
+                    static_cast<double>(implicit_totals.linear_iterations) /
+                      implicit_totals.newton_iterations :
+                    0.)
+              << "\n"
+              << "  residual evaluations per step:          "
+              << implicit_totals.residual_evaluations / steps << "\n"
+              << "  rejected steps:                         "
+              << implicit_totals.rejected << "\n";
+        if (implicit_totals.rejected > 0)
+          pcout << "  smallest time step:                     "
+                << implicit_totals.smallest_step << "\n";
+      }
     // Momentum relative to the initial momentum scale sum_p m_p |v_p|; walls,
     // rigid grains, gravity and removed particles change it legitimately.
     const double momentum_change =

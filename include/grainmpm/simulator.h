@@ -12,12 +12,14 @@
 #include <grainmpm/postprocess/grain_history.h>
 #include <grainmpm/postprocess/output_writer.h>
 #include <grainmpm/time_integration/explicit_leapfrog.h>
+#include <grainmpm/time_integration/implicit_theta.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -82,6 +84,16 @@ namespace grainmpm
     EnergySummary<dim>    current_energy;
     double                minimum_energy = 0.;
     double                maximum_energy = 0.;
+    /** Solver counts of the implicit scheme over the run. */
+    struct
+    {
+      unsigned long newton_iterations     = 0;
+      unsigned long linear_iterations     = 0;
+      unsigned long residual_evaluations  = 0;
+      unsigned int  max_newton_iterations = 0;
+      unsigned int  rejected              = 0;
+      double        smallest_step = std::numeric_limits<double>::max();
+    } implicit_totals;
     /** sum_p m_p |v_p| at t = 0, the scale of momentum errors. */
     double initial_momentum_scale = 0.;
   };

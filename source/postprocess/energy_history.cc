@@ -35,7 +35,10 @@ namespace grainmpm
     for (unsigned int d = 0; d < dim; ++d)
       file << ",momentum_"
            << "xyz"[d] << " [" << impulse << "]";
-    file << ",contact_nodes [1],removed_particles [1]\n" << std::flush;
+    file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
+            "linear_iterations [1],residual_evaluations [1],"
+            "residual_rms [1],rejected_steps [1]\n"
+         << std::flush;
   }
 
 
@@ -86,7 +89,10 @@ namespace grainmpm
     for (unsigned int d = 0; d < dim; ++d)
       file << ',' << summary.momentum[d];
     file << ',' << statistics.n_contact_nodes << ',' << statistics.n_removed
-         << '\n'
+         << ',' << statistics.newton_iterations << ','
+         << statistics.linear_iterations << ','
+         << statistics.residual_evaluations << ',' << std::setprecision(4)
+         << statistics.residual_norm << ',' << statistics.rejected << '\n'
          << std::flush;
   }
 

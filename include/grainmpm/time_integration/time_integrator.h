@@ -48,7 +48,7 @@ namespace grainmpm
     unsigned int linear_iterations = 0;
     /** Residual evaluations of the step (all attempts). */
     unsigned int residual_evaluations = 0;
-    /** Final ||R|| / F_scale of the accepted solve. */
+    /** Final RMS(R) / U of the accepted solve (U: velocity scale). */
     double residual_norm = 0.;
     /** Changes of the contact status during the accepted solve. */
     unsigned int status_changes = 0;

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_time_integration_implicit_theta_h
+#define grainmpm_time_integration_implicit_theta_h
+
+#include <grainmpm/solvers/newton_krylov.h>
+#include <grainmpm/time_integration/theta_residual.h>
+#include <grainmpm/time_integration/time_integrator.h>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * The fully implicit theta step of Cummins & Brackbill (seed eqs. 11-20,
+   * DESIGN.md section 5, reference/physics.md section 4.8):
+   *
+   * 1. P2G of mass, momentum and mass gradients at t^n; contact and walls
+   *    on v^n (the reference v^n of the step); normals frozen.
+   * 2. Solve R(v^{n+1}) = 0 (ThetaResidual) by Jacobian-free Newton-Krylov
+   *    (NewtonKrylovSolver) from v^n or an explicit predictor.
+   * 3. Momentum-exact final velocity v* = v^n + dt (f / m + g) with the
+   *    forces of the converged iterate (v* = V - R(V)), then the contact
+   *    projection and walls with the converged status: the grid velocity
+   *    v^{n+1}. Total momentum then changes exactly by the external
+   *    impulse, whatever the Newton tolerance.
+   * 4. Stress, history, deformation gradient and volume from
+   *    v^theta = (1 - theta) v^n + theta v^{n+1}; FLIP (or PIC, blend)
+   *    particle velocities from v^{n+1} - v^n_P2G; positions moved with
+   *    v^theta (second order at theta = 1/2).
+   *
+   * If the solve fails, advance() returns `converged == false` with the
+   * reason and leaves the particles untouched, so that the caller can
+   * retry with a smaller step.
+   */
+  template <int dim>
+  class ImplicitTheta : public TimeIntegrator<dim>
+  {
+  public:
+    using VectorType = typename TimeIntegrator<dim>::VectorType;
+
+    ImplicitTheta(
+      const Parameters<dim>                                      &parameters,
+      const BackgroundGrid<dim>                                  &grid,
+      const std::vector<GrainInfo<dim>>                          &grains,
+      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
+
+    StepStatistics
+    advance(Particles::ParticleHandler<dim> &particle_handler,
+            const double                     time,
+            const double                     dt) override;
+
+    /**
+     * Set up the residual of the step from @p time by @p dt without
+     * solving: P2G, v^n with contact, the residual with the status frozen
+     * at v^n. For the unit tests and benchmarks.
+     */
+    ThetaResidual<dim> &
+    prepare(Particles::ParticleHandler<dim> &particle_handler,
+            const double                     time,
+            const double                     dt);
+
+    /** v^n of the last prepared step (after contact and walls). */
+    const VectorType &
+    get_old_velocities() const
+    {
+      return velocities_old;
+    }
+
+    /** The Newton-Krylov solver. */
+    const NewtonKrylovSolver &
+    get_solver() const
+    {
+      return solver;
+    }
+
+    /**
+     * Grid energy 1/2 sum_s m_s |v_s|^2 + sum_p V_p W(sigma_p) of the
+     * deformable grains at the start and at the end of the last step.
+     */
+    std::pair<double, double>
+    get_grid_energies() const
+    {
+      return grid_energies;
+    }
+
+  private:
+    /** The velocity scale U: Velocity scale or the largest wave speed. */
+    double
+    compute_velocity_scale() const;
+
+    /** Stress, history, F and volume of every deformable particle. */
+    void
+    commit_particle_state(Particles::ParticleHandler<dim> &particle_handler,
+                          const VectorType                &theta_velocities,
+                          double                          &strain_energy);
+
+    using TimeIntegrator<dim>::parameters;
+    using TimeIntegrator<dim>::grid;
+    using TimeIntegrator<dim>::grains;
+    using TimeIntegrator<dim>::materials;
+    using TimeIntegrator<dim>::field_is_rigid;
+    using TimeIntegrator<dim>::cache;
+    using TimeIntegrator<dim>::layout;
+    using TimeIntegrator<dim>::masses;
+    using TimeIntegrator<dim>::normals;
+    using TimeIntegrator<dim>::velocities_p2g;
+    using TimeIntegrator<dim>::velocities_new;
+    using TimeIntegrator<dim>::node_in_contact;
+    using TimeIntegrator<dim>::apply_constraints;
+    using TimeIntegrator<dim>::prescribe_rigid_velocities;
+
+    ThetaResidual<dim>        residual;
+    NewtonKrylovSolver        solver;
+    VectorType                velocities_old;
+    VectorType                rigid_velocities;
+    VectorType                unknowns;
+    VectorType                final_residual;
+    VectorType                theta_velocities;
+    std::pair<double, double> grid_energies;
+  };
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/time_integration/implicit_theta.h>
+
+namespace grainmpm
+{
+  namespace
+  {
+    /** Velocity scale U of the Newton solver. */
+    template <int dim>
+    double
+    velocity_scale(
+      const Parameters<dim>                                      &parameters,
+      const std::vector<GrainInfo<dim>>                          &grains,
+      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+    {
+      if (parameters.nonlinear_solver.velocity_scale > 0.)
+        return parameters.nonlinear_solver.velocity_scale;
+      double wave_speed = 0.;
+      for (const auto &grain : grains)
+        if (!grain.rigid)
+          wave_speed =
+            std::max(wave_speed, materials[grain.material]->wave_speed());
+      return wave_speed > 0. ? wave_speed : 1.;
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  ImplicitTheta<dim>::ImplicitTheta(
+    const Parameters<dim>                                      &parameters,
+    const BackgroundGrid<dim>                                  &grid,
+    const std::vector<GrainInfo<dim>>                          &grains,
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+    : TimeIntegrator<dim>(parameters, grid, grains, materials)
+    , residual(parameters.contact, grid, this->field_is_rigid, materials)
+    , solver(parameters.nonlinear_solver,
+             parameters.linear_solver,
+             velocity_scale(parameters, grains, materials))
+  {}
+
+
+
+  template <int dim>
+  ThetaResidual<dim> &
+  ImplicitTheta<dim>::prepare(Particles::ParticleHandler<dim> &particle_handler,
+                              const double                     time,
+                              const double                     dt)
+  {
+    // Frozen at t^n: shape functions, slots, masses, normals; v^n with
+    // contact and walls (reference/physics.md section 4.1).
+    this->begin_step(particle_handler, time);
+    velocities_old = velocities_p2g;
+    apply_constraints(velocities_old);
+    rigid_velocities = velocities_old;
+    prescribe_rigid_velocities(rigid_velocities, time + dt);
+
+    residual.reinit(cache,
+                    layout,
+                    particle_handler,
+                    grains,
+                    masses,
+                    normals,
+                    velocities_old,
+                    rigid_velocities,
+                    parameters.physics.gravity,
+                    parameters.time_stepping.theta,
+                    dt);
+
+    // The first iterate: v^n, rigid slots at their velocity at t + dt.
+    unknowns = velocities_old;
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      if (field_is_rigid[layout.field(s)])
+        for (unsigned int d = 0; d < dim; ++d)
+          unknowns.local_element(s * dim + d) =
+            rigid_velocities.local_element(s * dim + d);
+    residual.freeze_status(unknowns);
+    return residual;
+  }
+
+
+
+  template <int dim>
+  StepStatistics
+  ImplicitTheta<dim>::advance(Particles::ParticleHandler<dim> &particle_handler,
+                              const double                     time,
+                              const double                     dt)
+  {
+    StepStatistics      statistics;
+    const unsigned long evaluations_at_start =
+      residual.n_residual_evaluations();
+    prepare(particle_handler, time, dt);
+    final_residual.reinit(unknowns, true);
+
+    if (parameters.nonlinear_solver.explicit_predictor)
+      {
+        // V0 = v^n + dt f(v^n) / m: one explicit step as the first guess.
+        residual.evaluate(unknowns, final_residual, false, true);
+        unknowns -= final_residual;
+      }
+
+    const NewtonStatistics newton = solver.solve(residual, unknowns);
+    statistics.newton_iterations  = newton.iterations;
+    statistics.linear_iterations  = newton.linear_iterations;
+    statistics.residual_norm      = newton.residual_norm;
+    statistics.status_changes     = newton.status_changes;
+    if (!newton.converged)
+      {
+        statistics.converged = false;
+        statistics.failure   = newton.failure;
+        statistics.residual_evaluations =
+          residual.n_residual_evaluations() - evaluations_at_start;
+        return statistics;
+      }
+
+    // Momentum-exact end velocity v* = V - R_raw(V) = v^n + dt (f / m + g),
+    // projected with the converged status.
+    residual.evaluate(unknowns, final_residual, false, true);
+    unknowns -= final_residual;
+    statistics.n_contact_nodes =
+      residual.project(unknowns, velocities_new, &node_in_contact);
+    theta_velocities.reinit(unknowns, true);
+    residual.theta_velocities(velocities_new, theta_velocities);
+
+    // Grid energies before and after (deformable slots).
+    double kinetic_old = 0., kinetic_new = 0.;
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      if (!field_is_rigid[layout.field(s)])
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const unsigned int k = s * dim + d;
+            kinetic_old += 0.5 * masses.local_element(s) *
+                           velocities_old.local_element(k) *
+                           velocities_old.local_element(k);
+            kinetic_new += 0.5 * masses.local_element(s) *
+                           velocities_new.local_element(k) *
+                           velocities_new.local_element(k);
+          }
+    const double strain_energy_old = residual.old_strain_energy();
+    double       strain_energy_new = 0.;
+    commit_particle_state(particle_handler,
+                          theta_velocities,
+                          strain_energy_new);
+    grid_energies = {kinetic_old + strain_energy_old,
+                     kinetic_new + strain_energy_new};
+
+    this->grid_to_particles(
+      particle_handler, theta_velocities, time, dt, statistics);
+    this->finish_step(particle_handler, statistics);
+    statistics.residual_evaluations =
+      residual.n_residual_evaluations() - evaluations_at_start;
+    return statistics;
+  }
+
+
+
+  template <int dim>
+  void
+  ImplicitTheta<dim>::commit_particle_state(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                &theta_v,
+    double                          &strain_energy)
+  {
+    using Layout  = MaterialPointLayout<dim>;
+    std::size_t p = 0;
+    for_each_particle(
+      grid, particle_handler, [&](const auto &, auto &particle) {
+        const std::size_t index = p++;
+        if (!residual.is_deformable(index))
+          return;
+        auto                  properties = particle->get_properties();
+        SymmetricTensor<2, 3> stress;
+        double                plastic_strain;
+        Tensor<2, dim>        increment;
+        residual.particle_update(
+          index, theta_v, stress, plastic_strain, increment);
+        Layout::set_stress(stress, properties);
+        properties[Layout::plastic_strain] = plastic_strain;
+        Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
+        F += increment * F;
+        Layout::set_deformation_gradient(F, properties);
+        properties[Layout::volume] =
+          determinant(F) * properties[Layout::initial_volume];
+        const unsigned int grain = Layout::get_grain(properties);
+        strain_energy +=
+          properties[Layout::volume] *
+          materials[grains[grain].material]->strain_energy_density(stress);
+      });
+  }
+
+
+
+  template class ImplicitTheta<2>;
+  template class ImplicitTheta<3>;
+} // namespace grainmpm

@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// The diagonal of the Jacobian probed with 18 coloured residual
+// evaluations (reference/physics.md section 5.5):
+// 1. without contact it equals the analytic diagonal of section 4.7,
+//    1 + theta^2 dt^2 sum_p V_p [(lambda + 2 mu) G_d^2 + mu G_e^2] / m;
+// 2. with two grains in frictional contact it equals the diagonal of the
+//    simplified Jacobian probed one unknown at a time (so the colouring
+//    is exact also at contact nodes).
+
+#include "../tests.h"
+
+#include "../implicit_fixture.h"
+#include "elastic_block.h"
+
+using namespace grainmpm;
+using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+double
+max_relative_difference(const VectorType &a, const VectorType &b)
+{
+  double difference = 0.;
+  for (unsigned int k = 0; k < a.size(); ++k)
+    difference = std::max(difference,
+                          std::abs(a.local_element(k) - b.local_element(k)) /
+                            std::abs(b.local_element(k)));
+  return difference;
+}
+
+
+
+void
+check_analytic_diagonal()
+{
+  ImplicitFixture<2> fixture(elastic_block_parameters(), "probed_diagonal_01");
+  auto              &stepper = *fixture.stepper;
+  const double       dt      = fixture.parameters.time_stepping.time_step;
+  const double       theta   = fixture.parameters.time_stepping.theta;
+  auto &residual      = stepper.prepare(*fixture.particle_handler, 0., dt);
+  const VectorType &V = stepper.get_old_velocities();
+
+  const unsigned long before = residual.n_residual_evaluations();
+  VectorType          diagonal;
+  residual.jacobian_diagonal(
+    V,
+    [&](const VectorType &x, const VectorType &z) {
+      return stepper.get_solver().differencing_step(x, z);
+    },
+    diagonal);
+  deallog << "residual evaluations for the diagonal: "
+          << residual.n_residual_evaluations() - before << std::endl;
+
+  // The analytic diagonal from the cached gradients.
+  TransferCache<2>    cache;
+  GrainFieldLayout<2> layout;
+  cache.reinit(*fixture.grid, *fixture.particle_handler, {0});
+  layout.reinit(cache, fixture.grid->n_nodes(), MPI_COMM_WORLD);
+  VectorType stiffness(V);
+  stiffness     = 0.;
+  std::size_t p = 0;
+  for_each_particle(
+    *fixture.grid,
+    *fixture.particle_handler,
+    [&](const auto &, const auto &particle) {
+      const double volume =
+        particle->get_properties()[MaterialPointLayout<2>::volume];
+      for (unsigned int v = 0; v < 4; ++v)
+        {
+          const auto &G    = cache.shape_gradients[4 * p + v];
+          const auto  slot = cache.slots[4 * p + v];
+          stiffness.local_element(2 * slot) +=
+            volume * ((block_lambda + 2. * block_mu) * G[0] * G[0] +
+                      block_mu * G[1] * G[1]);
+          stiffness.local_element(2 * slot + 1) +=
+            volume * ((block_lambda + 2. * block_mu) * G[1] * G[1] +
+                      block_mu * G[0] * G[0]);
+        }
+      ++p;
+    });
+  VectorType analytic(V);
+  double     largest_stiffness_ratio = 0.;
+  for (unsigned int k = 0; k < V.size(); ++k)
+    {
+      const double ratio = theta * theta * dt * dt *
+                           stiffness.local_element(k) /
+                           stepper.get_masses().local_element(k / 2);
+      analytic.local_element(k) = 1. + ratio;
+      largest_stiffness_ratio   = std::max(largest_stiffness_ratio, ratio);
+    }
+  const double difference = max_relative_difference(diagonal, analytic);
+  deallog << "largest theta^2 dt^2 K_ii / m_i > 1: "
+          << (largest_stiffness_ratio > 1. ? "yes" : "no") << std::endl;
+  deallog << "probed = analytic diagonal (max relative difference < 1e-6): "
+          << (difference < 1e-6 ? "yes" : "no") << std::endl;
+  if (difference >= 1e-6)
+    deallog << "  max relative difference = " << difference << std::endl;
+}
+
+
+
+void
+check_contact_diagonal()
+{
+  const std::string  text = R"(
+set Dimension = 2
+subsection Background grid
+  set Lower corner        = 0, 0
+  set Upper corner        = 1, 1
+  set Number of cells     = 10, 10
+  set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip
+end
+subsection Materials
+  subsection elastic
+    set Density         = 1
+    set Young's modulus = 1000
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = rectangle
+    set Centre           = 0.3, 0.5
+    set Size             = 0.3, 0.3
+    set Material         = elastic
+    set Initial velocity = 1; 0.5
+  end
+  subsection Grain 2
+    set Shape            = disk
+    set Centre           = 0.67, 0.52
+    set Radius           = 0.16
+    set Material         = elastic
+    set Initial velocity = -1; -0.2
+  end
+end
+subsection Contact
+  set Contact model        = Coulomb friction
+  set Friction coefficient = 0.3
+end
+subsection Time stepping
+  set Scheme    = implicit theta
+  set Time step = 5.45e-3
+end
+)";
+  ImplicitFixture<2> fixture(text, "probed_diagonal_01_contact");
+  auto              &stepper = *fixture.stepper;
+  auto &residual      = stepper.prepare(*fixture.particle_handler, 0., 5.45e-3);
+  const VectorType &V = stepper.get_old_velocities();
+  deallog << "contact nodes: " << stepper.get_layout().contact_nodes().size()
+          << std::endl;
+  VectorType                 projected(V);
+  std::vector<unsigned char> flags(fixture.grid->n_nodes(), 0);
+  deallog << "nodes with active contact: "
+          << residual.project(V, projected, &flags) << std::endl;
+
+  const auto step = [&](const VectorType &x, const VectorType &z) {
+    return stepper.get_solver().differencing_step(x, z);
+  };
+  VectorType diagonal;
+  residual.jacobian_diagonal(V, step, diagonal);
+
+  // One unknown at a time.
+  VectorType base(V), probed(V), direction(V), perturbed(V), brute(V);
+  residual.evaluate(V, base, true);
+  brute = 1.;
+  for (unsigned int k = 0; k < V.size(); ++k)
+    {
+      if (!residual.is_active(k / 2))
+        continue;
+      direction                  = 0.;
+      direction.local_element(k) = 1.;
+      const double eps           = step(V, direction);
+      perturbed                  = V;
+      perturbed.add(eps, direction);
+      residual.evaluate(perturbed, probed, true);
+      brute.local_element(k) =
+        (probed.local_element(k) - base.local_element(k)) / eps;
+    }
+  const double difference = max_relative_difference(diagonal, brute);
+  deallog << "coloured = one-by-one diagonal with contact "
+             "(max relative difference < 1e-6): "
+          << (difference < 1e-6 ? "yes" : "no") << std::endl;
+  if (difference >= 1e-6)
+    deallog << "  max relative difference = " << difference << std::endl;
+}
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  check_analytic_diagonal();
+  check_contact_diagonal();
+}

@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// Energy of the theta scheme (reference/physics.md section 4.6): a free
+// elastic disk vibrating from a pure-shear velocity field (isochoric, so
+// that the volume change of the hypoelastic model is only second order),
+// 40 steps at CFL 2. With
+// theta = 1/2 the grid energy 1/2 sum m v^2 + sum V W(sigma) of every step
+// is conserved to the solver tolerance; with theta = 1 (backward Euler)
+// it is dissipated. Printed: the largest per-step change and the sum of
+// the per-step changes, relative to the initial energy.
+
+#include <cmath>
+#include <cstdlib>
+
+#include "../tests.h"
+
+#include "../implicit_fixture.h"
+
+using namespace grainmpm;
+
+void
+run(const std::string &theta)
+{
+  const std::string text = R"(
+set Dimension = 2
+subsection Background grid
+  set Lower corner        = 0, 0
+  set Upper corner        = 1, 1
+  set Number of cells     = 20, 20
+end
+subsection Materials
+  subsection elastic
+    set Density         = 1
+    set Young's modulus = 1000
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = disk
+    set Centre           = 0.5, 0.5
+    set Radius           = 0.2
+    set Material         = elastic
+    set Initial velocity = 0.02*(y-0.5); 0.02*(x-0.5)
+  end
+end
+subsection Time stepping
+  set Scheme    = implicit theta
+  set Theta     = )" + theta +
+                           R"(
+  set Time step = 2.7e-3
+end
+subsection Nonlinear solver
+  set Tolerance = 1e-10
+end
+)";
+  ImplicitFixture<2> fixture(text, "theta_energy_01");
+  const double       dt      = fixture.parameters.time_stepping.time_step;
+  double             initial = 0., largest_change = 0., sum_of_changes = 0.;
+  unsigned int       newton = 0;
+  for (unsigned int step = 0; step < 40; ++step)
+    {
+      const StepStatistics statistics =
+        fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
+      AssertThrow(statistics.converged, ExcMessage(statistics.failure));
+      newton += statistics.newton_iterations;
+      const auto [before, after] = fixture.stepper->get_grid_energies();
+      if (step == 0)
+        initial = before;
+      largest_change = std::max(largest_change, std::abs(after - before));
+      sum_of_changes += after - before;
+    }
+  deallog << "theta = " << theta << ": Newton iterations " << newton
+          << std::endl;
+  if (theta == "0.5")
+    {
+      deallog << "  largest per-step change / E0 < 1e-7: "
+              << (largest_change / initial < 1e-7 ? "yes" : "no") << std::endl;
+      if (largest_change / initial >= 1e-7 ||
+          std::getenv("GRAINMPM_VERBOSE") != nullptr)
+        deallog << "  largest per-step change / E0 = "
+                << largest_change / initial << std::endl;
+    }
+  else
+    deallog << "  sum of per-step changes / E0 = "
+            << std::round(100. * sum_of_changes / initial) / 100.
+            << " (dissipates more than 10 %: "
+            << (sum_of_changes / initial < -0.1 ? "yes" : "no") << ")"
+            << std::endl;
+}
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  run("0.5");
+  run("1");
+}
