@@ -231,6 +231,8 @@ namespace grainmpm
               }
             step_limit = 0.5 * failed_step;
             easy_steps = 0;
+            implicit_totals.smallest_step =
+              std::min(implicit_totals.smallest_step, step_limit);
             time.set_desired_next_step_size(step_limit);
           }
         statistics.rejected = rejected_attempts;
@@ -238,12 +240,10 @@ namespace grainmpm
           {
             implicit_totals.newton_iterations += statistics.newton_iterations;
             implicit_totals.linear_iterations += statistics.linear_iterations;
+            implicit_totals.status_changes += statistics.status_changes;
             implicit_totals.max_newton_iterations =
               std::max(implicit_totals.max_newton_iterations,
                        statistics.newton_iterations);
-            implicit_totals.smallest_step =
-              std::min(implicit_totals.smallest_step,
-                       time.get_next_step_size());
             // Grow a cut step back after easy steps.
             if (step_limit > 0. && 2 * statistics.newton_iterations <=
                                      parameters.nonlinear_solver.max_iterations)
@@ -338,10 +338,12 @@ namespace grainmpm
               << "\n"
               << "  residual evaluations per step:          "
               << implicit_totals.residual_evaluations / steps << "\n"
+              << "  contact status changes:                 "
+              << implicit_totals.status_changes << "\n"
               << "  rejected steps:                         "
               << implicit_totals.rejected << "\n";
         if (implicit_totals.rejected > 0)
-          pcout << "  smallest time step:                     "
+          pcout << "  smallest time step tried:               "
                 << implicit_totals.smallest_step << "\n";
       }
     // Momentum relative to the initial momentum scale sum_p m_p |v_p|; walls,

@@ -90,9 +90,10 @@ namespace grainmpm
       unsigned long newton_iterations     = 0;
       unsigned long linear_iterations     = 0;
       unsigned long residual_evaluations  = 0;
+      unsigned long status_changes        = 0;
       unsigned int  max_newton_iterations = 0;
       unsigned int  rejected              = 0;
-      double        smallest_step = std::numeric_limits<double>::max();
+      double        smallest_step         = std::numeric_limits<double>::max();
     } implicit_totals;
     /** sum_p m_p |v_p| at t = 0, the scale of momentum errors. */
     double initial_momentum_scale = 0.;
