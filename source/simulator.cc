@@ -226,8 +226,11 @@ namespace grainmpm
                      "Output up to t = "
                   << time.get_current_time() << " is complete in "
                   << parameters.output.directory << ".";
-                throw InputError("Time stepping/Minimum time step",
-                                 message.str());
+                throw InputError(
+                  parameters.time_stepping.adaptive_time_stepping ?
+                    "Time stepping/Minimum time step" :
+                    "Time stepping/Adaptive time stepping",
+                  message.str());
               }
             step_limit = 0.5 * failed_step;
             easy_steps = 0;

@@ -40,30 +40,59 @@ namespace grainmpm
     const Tensor<2, dim>        &displacement_gradient_increment,
     double & /*plastic_strain*/) const
   {
-    // Embed dt grad v into 3D; in 2D the out-of-plane rows are zero.
-    Tensor<2, 3> increment;
+    // Written out component by component (it runs once per particle and
+    // residual evaluation of the implicit solver): the strain increment
+    // sym(dt grad v) and the spin increment skw(dt grad v) live in the
+    // first dim rows and columns; in 2D the out-of-plane ones are zero.
+    const Tensor<2, dim> &L = displacement_gradient_increment;
+    double                spin[dim][dim];
     for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = 0; j < dim; ++j)
-        increment[i][j] = displacement_gradient_increment[i][j];
-    const SymmetricTensor<2, 3> strain_increment = symmetrize(increment);
-    const Tensor<2, 3>          spin_increment =
-      0.5 * (increment - transpose(increment));
+      for (unsigned int k = 0; k < dim; ++k)
+        spin[i][k] = 0.5 * (L[i][k] - L[k][i]);
 
-    // Jaumann rotation of the old stress: sigma + dW sigma - sigma dW.
-    const Tensor<2, 3> old_stress = stress;
-    const Tensor<2, 3> rotated =
-      old_stress + spin_increment * old_stress - old_stress * spin_increment;
+    // Jaumann rotation of the old stress: sigma + dW sigma - sigma dW, on
+    // plain arrays (SymmetricTensor's [i][j] accessors are slow here).
+    double old_stress[3][3];
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = i; j < 3; ++j)
+        old_stress[i][j] = old_stress[j][i] = stress.access_raw_entry(
+          SymmetricTensor<2, 3>::component_to_unrolled_index(
+            TableIndices<2>(i, j)));
+    double rotated[3][3];
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = i; j < 3; ++j)
+        {
+          double value = old_stress[i][j];
+          for (unsigned int k = 0; k < dim; ++k)
+            {
+              if (i < dim)
+                value += spin[i][k] * old_stress[k][j];
+              if (j < dim)
+                value -= old_stress[i][k] * spin[k][j];
+            }
+          rotated[i][j] = value;
+        }
 
     // The in-plane trace; in plane stress lambda is already the reduced one
     // and sigma_zz gets no increment.
-    const double          volumetric = trace(strain_increment);
-    SymmetricTensor<2, 3> new_stress = symmetrize(rotated);
+    double volumetric = 0.;
     for (unsigned int i = 0; i < dim; ++i)
-      for (unsigned int j = i; j < dim; ++j)
-        new_stress[i][j] += 2. * mu * strain_increment[i][j] +
-                            (i == j ? lambda * volumetric : 0.);
+      volumetric += L[i][i];
+    for (unsigned int i = 0; i < dim; ++i)
+      {
+        rotated[i][i] += 2. * mu * L[i][i] + lambda * volumetric;
+        for (unsigned int j = i + 1; j < dim; ++j)
+          rotated[i][j] += mu * (L[i][j] + L[j][i]);
+      }
     if (dim == 2 && !plane_stress)
-      new_stress[2][2] += lambda * volumetric;
+      rotated[2][2] += lambda * volumetric;
+
+    SymmetricTensor<2, 3> new_stress;
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = i; j < 3; ++j)
+        new_stress.access_raw_entry(
+          SymmetricTensor<2, 3>::component_to_unrolled_index(
+            TableIndices<2>(i, j))) = rotated[i][j];
     return new_stress;
   }
 

@@ -518,11 +518,22 @@ namespace grainmpm
         double                plastic_strain;
         Tensor<2, dim>        increment;
         compute_particle(p, work_theta, new_stress, plastic_strain, increment);
-        const SymmetricTensor<2, 3> stress =
-          (1. - theta) * particle_stresses[p] + theta * new_stress;
+        // V^theta sigma^theta in the plane, on a plain array.
         const double volume =
           particle_volumes[p] *
           ((1. - theta) + theta * determinant(unit + increment));
+        double stress[dim][dim];
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = i; j < dim; ++j)
+            {
+              const unsigned int k =
+                SymmetricTensor<2, 3>::component_to_unrolled_index(
+                  TableIndices<2>(i, j));
+              stress[i][j] = stress[j][i] =
+                volume *
+                ((1. - theta) * particle_stresses[p].access_raw_entry(k) +
+                 theta * new_stress.access_raw_entry(k));
+            }
         const unsigned int offset = p * per_particle;
         for (unsigned int v = 0; v < per_particle; ++v)
           {
@@ -533,8 +544,7 @@ namespace grainmpm
                 double divergence = 0.;
                 for (unsigned int j = 0; j < dim; ++j)
                   divergence += stress[i][j] * gradient[j];
-                work_forces.local_element(slot * dim + i) -=
-                  volume * divergence;
+                work_forces.local_element(slot * dim + i) -= divergence;
               }
           }
       }
