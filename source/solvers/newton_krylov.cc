@@ -8,6 +8,7 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace grainmpm
@@ -220,7 +221,8 @@ namespace grainmpm
           {
             std::ostringstream why;
             why << "Newton did not converge in " << k
-                << " iterations (||R|| / F_scale = " << relative(norm)
+                << " iterations (||R|| / F_scale = " << std::setprecision(2)
+                << relative(norm)
                 << ", tolerance " << nonlinear.tolerance << ")";
             return finish(false, why.str());
           }
