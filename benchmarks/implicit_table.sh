@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Copyright (C) 2026 by the grainmpm authors
+#
+# The implicit-solver table of issue 3, from the shipped cases: for the
+# single grain between walls (prm/single_grain_rebound_implicit.prm) at
+# CFL 1, 2.5, 5 and 10, and the two-disk collision (prm/two_disks_implicit.prm)
+# at CFL 2.5, with the probed Jacobi preconditioner and without:
+# Newton iterations per step, Krylov (GMRES) iterations per Newton
+# iteration, residual evaluations per step, energies at the end relative to
+# the start, rebound speeds of the grain in its flights (t = 0.4, 0.8, 1.2,
+# 1.6, 2.0), and the explicit CFL 0.25 baseline for the spurious elastic
+# energy. Not a test: it prints figures (about 2 minutes).
+#
+# Usage: benchmarks/implicit_table.sh [build directory=build]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+grainmpm=$(realpath "$build/source/grainmpm")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text.
+run() {
+  local name=$1 case=$2 extra=$3
+  {
+    echo "include $PWD/prm/$case.prm"
+    printf '%b\n' "$extra"
+    printf 'subsection Output\n  set Output directory = %s\n  set Test mode = true\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name"
+  } > "$work/$name.prm"
+  (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
+}
+
+# value NAME PATTERN: the number after PATTERN in the summary.
+value() {
+  grep -F "$2" "$work/$1.out" | head -1 | sed 's/.*[:=] *//; s/,.*//; s/ .*//'
+}
+
+# speeds NAME: |v_x| of grain 1 nearest to t = 0.4, 0.8, 1.2, 1.6, 2.0.
+speeds() {
+  awk -F, 'NR > 1 && $2 == 1 { t[NR] = $1; v[NR] = ($6 < 0 ? -$6 : $6) }
+    END { n = split("0.4 0.8 1.2 1.6 2.0", targets, " ");
+          for (k = 1; k <= n; ++k) { best = -1;
+            for (i in t) if (best < 0 || (t[i] - targets[k])^2 < (t[best] - targets[k])^2) best = i;
+            printf "%s%.3f", (k > 1 ? " " : ""), v[best] } }' "$work/$1/grains.csv"
+}
+
+echo "| case | CFL | preconditioner | steps | Newton/step | GMRES/Newton | residual evaluations/step | rejected | E_total(end)/E0 | E_el(end)/E0 | max E/E0 | |v_x| in flights 1-5 |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+for cfl in 1 2.5 5 10; do
+  for preconditioner in "probed Jacobi" "none"; do
+    name="grain_${cfl}_${preconditioner// /_}"
+    run "$name" single_grain_rebound_implicit \
+      "subsection Time stepping\n  set CFL number = $cfl\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\n  set Maximum linear iterations = 1000\nend"
+    echo "| single grain | $cfl | $preconditioner | $(value "$name" "finished:" | sed 's/ .*//') $(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //') | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $(value "$name" "residual evaluations per step") | $(value "$name" "rejected steps") | $(value "$name" "E_total(end)") | $(value "$name" "E_el(end)") | $(grep -F 'min, max E_total' "$work/$name.out" | sed 's/.*, //') | $(speeds "$name") |" | sed 's/|  *[^|]* \([0-9][0-9]*\) |/| \1 |/'
+  done
+done
+for preconditioner in "probed Jacobi" "none"; do
+  name="disks_${preconditioner// /_}"
+  run "$name" two_disks_implicit \
+    "subsection Linear solver\n  set Preconditioner = $preconditioner\n  set Maximum linear iterations = 1000\nend"
+  echo "| two disks | 2.5 | $preconditioner | $(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //') | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $(value "$name" "residual evaluations per step") | $(value "$name" "rejected steps") | $(value "$name" "E_total(end)") | $(value "$name" "E_el(end)") | $(grep -F 'min, max E_total' "$work/$name.out" | sed 's/.*, //') | |"
+done
+
+run explicit single_grain_rebound_explicit ""
+echo
+echo "Explicit baseline (single grain, CFL 0.25, $(grep -o 'finished: [0-9]*' "$work/explicit.out" | sed 's/finished: //') steps): E_total(end)/E0 = $(value explicit "E_total(end)"), E_el(end)/E0 = $(value explicit "E_el(end)"), |v_x| in flights 1-5: $(speeds explicit)"
