@@ -37,7 +37,8 @@ namespace grainmpm
            << "xyz"[d] << " [" << impulse << "]";
     file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
             "linear_iterations [1],residual_evaluations [1],"
-            "residual_rms [1],rejected_steps [1]\n"
+            "residual_rms [1],rejected_steps [1],"
+            "grid_energy_change [M L^2/T^2 per L]\n"
          << std::flush;
   }
 
@@ -92,7 +93,8 @@ namespace grainmpm
          << ',' << statistics.newton_iterations << ','
          << statistics.linear_iterations << ','
          << statistics.residual_evaluations << ',' << std::setprecision(4)
-         << statistics.residual_norm << ',' << statistics.rejected << '\n'
+         << statistics.residual_norm << ',' << statistics.rejected << ','
+         << std::setprecision(12) << statistics.grid_energy_change << '\n'
          << std::flush;
   }
 

@@ -144,8 +144,9 @@ namespace grainmpm
     commit_particle_state(particle_handler,
                           theta_velocities,
                           strain_energy_new);
-    grid_energies = {kinetic_old + strain_energy_old,
-                     kinetic_new + strain_energy_new};
+    grid_energies                 = {kinetic_old + strain_energy_old,
+                                     kinetic_new + strain_energy_new};
+    statistics.grid_energy_change = grid_energies.second - grid_energies.first;
 
     this->grid_to_particles(
       particle_handler, theta_velocities, time, dt, statistics);

@@ -52,6 +52,12 @@ namespace grainmpm
     double residual_norm = 0.;
     /** Changes of the contact status during the accepted solve. */
     unsigned int status_changes = 0;
+    /**
+     * Implicit scheme: change of the grid energy 1/2 sum m v^2 + sum V W
+     * over the step (the time integrator's share of the energy balance;
+     * the rest is the particle-grid transfers).
+     */
+    double grid_energy_change = 0.;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
   };
