@@ -222,8 +222,8 @@ namespace grainmpm
             std::ostringstream why;
             why << "Newton did not converge in " << k
                 << " iterations (||R|| / F_scale = " << std::setprecision(2)
-                << relative(norm)
-                << ", tolerance " << nonlinear.tolerance << ")";
+                << relative(norm) << ", tolerance " << nonlinear.tolerance
+                << ")";
             return finish(false, why.str());
           }
 
