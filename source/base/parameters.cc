@@ -762,12 +762,6 @@ namespace grainmpm
       "within a Newton iteration and re-evaluated between iterations; after "
       "this many changes in one step it is kept fixed. Dimensionless.",
       Patterns::Integer(0, 100));
-    prm.add_parameter(
-      "Initial guess",
-      initial_guess_text,
-      "First Newton iterate of v^{n+1}: 'old velocity' (v^n after contact) "
-      "or 'explicit predictor' (v^n + dt f(v^n) / m). Dimensionless.",
-      Patterns::Selection("old velocity|explicit predictor"));
     prm.leave_subsection();
   }
 
@@ -776,14 +770,13 @@ namespace grainmpm
   void
   NonlinearSolverParameters::check()
   {
-    residual_scale     = (residual_scale_text == "physical") ?
-                           ResidualScale::physical :
-                           ResidualScale::initial_residual;
-    eisenstat_walker   = (forcing_text == "Eisenstat-Walker");
-    differencing       = (differencing_text == "Knoll-Keyes") ?
-                           DifferencingStep::knoll_keyes :
-                           DifferencingStep::pernice_walker;
-    explicit_predictor = (initial_guess_text == "explicit predictor");
+    residual_scale   = (residual_scale_text == "physical") ?
+                         ResidualScale::physical :
+                         ResidualScale::initial_residual;
+    eisenstat_walker = (forcing_text == "Eisenstat-Walker");
+    differencing     = (differencing_text == "Knoll-Keyes") ?
+                         DifferencingStep::knoll_keyes :
+                         DifferencingStep::pernice_walker;
     if (differencing_error == 0.)
       differencing_error = std::numeric_limits<double>::epsilon();
     if (forcing_constant > forcing_maximum && eisenstat_walker)

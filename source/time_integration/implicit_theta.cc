@@ -95,13 +95,6 @@ namespace grainmpm
     prepare(particle_handler, time, dt);
     final_residual.reinit(unknowns, true);
 
-    if (parameters.nonlinear_solver.explicit_predictor)
-      {
-        // V0 = v^n + dt f(v^n) / m: one explicit step as the first guess.
-        residual.evaluate(unknowns, final_residual, false, true);
-        unknowns -= final_residual;
-      }
-
     const NewtonStatistics newton = solver.solve(residual, unknowns);
     statistics.newton_iterations  = newton.iterations;
     statistics.linear_iterations  = newton.linear_iterations;

@@ -5,6 +5,7 @@
 #include <grainmpm/time_integration/theta_residual.h>
 
 #include <cmath>
+#include <limits>
 
 namespace grainmpm
 {
@@ -508,6 +509,7 @@ namespace grainmpm
 
     // Internal forces from the time-centred stress and volume (eqs. 12-13).
     work_forces                      = 0.;
+    bool                 inverted    = false;
     const Tensor<2, dim> unit        = unit_symmetric_tensor<dim>();
     const std::size_t    n_particles = particle_models.size();
     for (std::size_t p = 0; p < n_particles; ++p)
@@ -518,10 +520,15 @@ namespace grainmpm
         double                plastic_strain;
         Tensor<2, dim>        increment;
         compute_particle(p, work_theta, new_stress, plastic_strain, increment);
-        // V^theta sigma^theta in the plane, on a plain array.
+        // V^theta sigma^theta in the plane, on a plain array. A trial that
+        // inverts a particle (det(I + dt grad v) <= 0) has no meaning: its
+        // residual is NaN, which the line search and the failure policy
+        // reject.
+        const double jacobian = determinant(unit + increment);
+        if (!(jacobian > 0.))
+          inverted = true;
         const double volume =
-          particle_volumes[p] *
-          ((1. - theta) + theta * determinant(unit + increment));
+          particle_volumes[p] * ((1. - theta) + theta * jacobian);
         double stress[dim][dim];
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
@@ -547,6 +554,12 @@ namespace grainmpm
                 work_forces.local_element(slot * dim + i) -= divergence;
               }
           }
+      }
+
+    if (inverted)
+      {
+        residual = std::numeric_limits<double>::quiet_NaN();
+        return;
       }
 
     // R = V - v^n - dt (f / m + g), in velocity units.

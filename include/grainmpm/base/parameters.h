@@ -264,8 +264,6 @@ namespace grainmpm
     bool             line_search          = true;
     unsigned int     max_line_search_cuts = 10;
     unsigned int     max_status_changes   = 5;
-    std::string      initial_guess_text   = "old velocity";
-    bool             explicit_predictor   = false;
 
     void
     declare(ParameterHandler &prm);
