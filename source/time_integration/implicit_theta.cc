@@ -48,7 +48,8 @@ namespace grainmpm
   ThetaResidual<dim> &
   ImplicitTheta<dim>::prepare(Particles::ParticleHandler<dim> &particle_handler,
                               const double                     time,
-                              const double                     dt)
+                              const double                     dt,
+                              const bool                       freeze)
   {
     // Frozen at t^n: shape functions, slots, masses, normals; v^n with
     // contact and walls (reference/physics.md section 4.1).
@@ -77,7 +78,8 @@ namespace grainmpm
         for (unsigned int d = 0; d < dim; ++d)
           unknowns.local_element(s * dim + d) =
             rigid_velocities.local_element(s * dim + d);
-    residual.freeze_status(unknowns);
+    if (freeze)
+      residual.freeze_status(unknowns);
     return residual;
   }
 
@@ -92,7 +94,8 @@ namespace grainmpm
     StepStatistics      statistics;
     const unsigned long evaluations_at_start =
       residual.n_residual_evaluations();
-    prepare(particle_handler, time, dt);
+    // The solver freezes the contact status at its first iterate itself.
+    prepare(particle_handler, time, dt, false);
     final_residual.reinit(unknowns, true);
 
     const NewtonStatistics newton = solver.solve(residual, unknowns);

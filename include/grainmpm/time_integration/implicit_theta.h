@@ -53,13 +53,15 @@ namespace grainmpm
 
     /**
      * Set up the residual of the step from @p time by @p dt without
-     * solving: P2G, v^n with contact, the residual with the status frozen
-     * at v^n. For the unit tests and benchmarks.
+     * solving: P2G, v^n with contact, the residual, with the status frozen
+     * at v^n if @p freeze. Used by advance() and by the unit tests and
+     * benchmarks.
      */
     ThetaResidual<dim> &
     prepare(Particles::ParticleHandler<dim> &particle_handler,
             const double                     time,
-            const double                     dt);
+            const double                     dt,
+            const bool                       freeze = true);
 
     /** v^n of the last prepared step (after contact and walls). */
     const VectorType &
