@@ -63,13 +63,8 @@ namespace grainmpm
   {
     if (parameters.time_stepping.time_step > 0.)
       return parameters.time_stepping.time_step;
-    double wave_speed = 0.;
-    for (const auto &grain : grains)
-      if (!grain.rigid)
-        wave_speed =
-          std::max(wave_speed, materials[grain.material]->wave_speed());
     return parameters.time_stepping.cfl_number * grid.minimum_cell_size() /
-           (wave_speed + max_speed);
+           (largest_wave_speed(grains, materials) + max_speed);
   }
 
 

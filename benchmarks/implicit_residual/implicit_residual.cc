@@ -17,10 +17,6 @@
 // Usage: implicit_residual [n_cells=512] [particles_per_direction=4]
 //                          [evaluations=10]
 
-#include <grainmpm/base/parameters.h>
-#include <grainmpm/grid/background_grid.h>
-#include <grainmpm/materials/constitutive_model.h>
-#include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/implicit_theta.h>
 
@@ -28,7 +24,8 @@
 
 #include <chrono>
 #include <iostream>
-#include <sstream>
+
+#include "../common/elastic_block.h"
 
 using namespace grainmpm;
 using VectorType = LinearAlgebra::distributed::Vector<double>;
@@ -123,48 +120,24 @@ main(int argc, char *argv[])
   const unsigned int n_cells = argc > 1 ? std::stoi(argv[1]) : 512;
   const unsigned int per_dir = argc > 2 ? std::stoi(argv[2]) : 4;
   const unsigned int n_evals = argc > 3 ? std::stoi(argv[3]) : 10;
-  const double       h       = 1. / n_cells;
-  const double       E = 1000., nu = 0.3, rho = 1.;
-  const double       lambda = E * nu / ((1 + nu) * (1 - 2 * nu)),
-               mu           = E / (2 * (1 + nu));
-  const double dt           = 2. * h / std::sqrt((lambda + 2 * mu) / rho);
+  const double       lambda  = benchmarks::ElasticBlock::lambda;
+  const double       mu      = benchmarks::ElasticBlock::mu;
+  const double       dt = 2. / n_cells / benchmarks::ElasticBlock::wave_speed();
 
-  std::ostringstream prm_text;
-  prm_text << "set Dimension = 2\n"
-           << "subsection Background grid\n  set Number of cells = " << n_cells
-           << ", " << n_cells << "\nend\n"
-           << "subsection Materials\n  subsection block\n    set Density = "
-           << rho << "\n    set Young's modulus = " << E
-           << "\n    set Poisson's ratio = " << nu << "\n  end\nend\n"
-           << "subsection Grains\n  subsection Grain 1\n    set Shape = "
-              "rectangle\n    set Centre = 0.5, 0.5\n    set Size = 0.5, 0.5\n"
-           << "    set Material = block\n"
-           << "    set Initial velocity = 0.1*sin(20*y); 0.1*cos(20*x)\n"
-           << "  end\nend\n"
-           << "subsection Material points\n  set Particles per cell = "
-           << per_dir << "\nend\n"
-           << "subsection Time stepping\n  set Scheme = implicit theta\n"
-           << "  set Time step = " << dt << "\nend\n"
-           << "subsection Nonlinear solver\n  set Forcing term = constant\n"
-           << "  set Forcing constant = 1e-6\n  set Tolerance = 1e-8\nend\n";
-  ParameterHandler prm;
-  Parameters<2>    parameters;
-  parameters.declare(prm, {"block"}, {"Grain 1"});
-  prm.parse_input_from_string(prm_text.str());
-  parameters.check();
-
-  BackgroundGrid<2>             grid(parameters.grid, MPI_COMM_WORLD);
-  Particles::ParticleHandler<2> particle_handler(
-    grid.get_triangulation(),
-    grid.get_mapping(),
-    MaterialPointLayout<2>::n_properties);
-  std::vector<std::unique_ptr<ConstitutiveModel<2>>> materials;
-  materials.emplace_back(
-    create_constitutive_model<2>(parameters.materials[0],
-                                 parameters.physics.two_dimensional_model));
-  const auto grains =
-    GrainGenerator<2>(parameters).generate(grid, particle_handler);
-  ImplicitTheta<2> stepper(parameters, grid, grains, materials);
+  benchmarks::ElasticBlock block(
+    n_cells,
+    per_dir,
+    "0.1*sin(20*y); 0.1*cos(20*x)",
+    dt,
+    "subsection Time stepping\n  set Scheme = implicit theta\nend\n"
+    "subsection Nonlinear solver\n  set Forcing term = constant\n"
+    "  set Forcing constant = 1e-6\n  set Tolerance = 1e-8\nend\n");
+  auto            &particle_handler = *block.particle_handler;
+  const auto      &grid             = *block.grid;
+  ImplicitTheta<2> stepper(block.parameters,
+                           grid,
+                           block.grains,
+                           block.materials);
   const double     n_particles = particle_handler.n_global_particles();
 
   // grainmpm's residual.

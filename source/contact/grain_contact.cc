@@ -7,32 +7,6 @@
 
 namespace grainmpm
 {
-  namespace
-  {
-    template <int dim>
-    Tensor<1, dim>
-    get(const LinearAlgebra::distributed::Vector<double> &vector,
-        const unsigned int                                slot)
-    {
-      Tensor<1, dim> value;
-      for (unsigned int d = 0; d < dim; ++d)
-        value[d] = vector.local_element(slot * dim + d);
-      return value;
-    }
-
-    template <int dim>
-    void
-    set(const Tensor<1, dim>                       &value,
-        LinearAlgebra::distributed::Vector<double> &vector,
-        const unsigned int                          slot)
-    {
-      for (unsigned int d = 0; d < dim; ++d)
-        vector.local_element(slot * dim + d) = value[d];
-    }
-  } // namespace
-
-
-
   template <int dim>
   GrainContact<dim>::GrainContact(const ContactParameters   &parameters,
                                   const BackgroundGrid<dim> &grid,
@@ -57,16 +31,16 @@ namespace grainmpm
         const unsigned int end   = layout.node_slots_end(node);
         Tensor<1, dim>     total;
         for (unsigned int s = begin; s < end; ++s)
-          total += get<dim>(mass_gradients, s);
+          total += get_slot_vector<dim>(mass_gradients, s);
         // n_g ~ g_g - sum_{k != g} g_k = 2 g_g - total: for two fields the
         // two normals are exactly opposite.
         for (unsigned int s = begin; s < end; ++s)
           {
             const Tensor<1, dim> direction =
-              2. * get<dim>(mass_gradients, s) - total;
+              2. * get_slot_vector<dim>(mass_gradients, s) - total;
             const double length = direction.norm();
             if (length > 0.)
-              set<dim>(direction / length, normals, s);
+              set_slot_vector<dim>(direction / length, normals, s);
           }
       }
   }
@@ -229,8 +203,8 @@ namespace grainmpm
           {
             node_masses[k]     = masses.local_element(begin + k);
             rigid_flags[k]     = field_is_rigid[layout.field(begin + k)];
-            node_normals[k]    = get<dim>(normals, begin + k);
-            node_velocities[k] = get<dim>(velocities, begin + k);
+            node_normals[k]    = get_slot_vector<dim>(normals, begin + k);
+            node_velocities[k] = get_slot_vector<dim>(velocities, begin + k);
           }
         if (project_node(n,
                          node_masses.data(),
@@ -241,7 +215,7 @@ namespace grainmpm
                          parameters.friction_coefficient))
           {
             for (unsigned int k = 0; k < n; ++k)
-              set<dim>(node_velocities[k], velocities, begin + k);
+              set_slot_vector<dim>(node_velocities[k], velocities, begin + k);
             node_in_contact[node] = 1;
             ++n_corrected;
           }
@@ -301,15 +275,15 @@ namespace grainmpm
           {
             if (field_is_rigid[layout.field(s)])
               continue;
-            Tensor<1, dim> velocity = get<dim>(velocities, s);
+            Tensor<1, dim> velocity = get_slot_vector<dim>(velocities, s);
             for (unsigned int face = 0; face < 2 * dim; ++face)
               if (faces & (1U << face))
                 {
-                  Tensor<1, dim> normal;
-                  normal[face / 2] = (face % 2 == 0) ? -1. : 1.;
-                  apply_wall(grid.boundary_condition(face), normal, velocity);
+                  apply_wall(grid.boundary_condition(face),
+                             face_normal(face),
+                             velocity);
                 }
-            set<dim>(velocity, velocities, s);
+            set_slot_vector<dim>(velocity, velocities, s);
           }
       }
   }

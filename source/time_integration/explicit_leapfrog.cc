@@ -104,18 +104,13 @@ namespace grainmpm
 
         // Eq. (9) through the constitutive model; F and eq. (10) for V.
         double plastic_strain = properties[Layout::plastic_strain];
-        Layout::set_stress(materials[grains[grain].material]->update_stress(
-                             Layout::get_stress(properties),
-                             increment,
-                             plastic_strain),
-                           properties);
-        properties[Layout::plastic_strain] = plastic_strain;
-
-        Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
-        F += increment * F;
-        Layout::set_deformation_gradient(F, properties);
-        properties[Layout::volume] =
-          determinant(F) * properties[Layout::initial_volume];
+        const SymmetricTensor<2, 3> stress =
+          materials[grains[grain].material]->update_stress(
+            Layout::get_stress(properties), increment, plastic_strain);
+        this->store_particle_state(properties,
+                                   stress,
+                                   plastic_strain,
+                                   increment);
       });
   }
 

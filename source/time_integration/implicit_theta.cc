@@ -18,11 +18,7 @@ namespace grainmpm
     {
       if (parameters.nonlinear_solver.velocity_scale > 0.)
         return parameters.nonlinear_solver.velocity_scale;
-      double wave_speed = 0.;
-      for (const auto &grain : grains)
-        if (!grain.rigid)
-          wave_speed =
-            std::max(wave_speed, materials[grain.material]->wave_speed());
+      const double wave_speed = largest_wave_speed(grains, materials);
       return wave_speed > 0. ? wave_speed : 1.;
     }
   } // namespace
@@ -174,16 +170,13 @@ namespace grainmpm
         Tensor<2, dim>        increment;
         residual.particle_update(
           index, theta_v, stress, plastic_strain, increment);
-        Layout::set_stress(stress, properties);
-        properties[Layout::plastic_strain] = plastic_strain;
-        Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
-        F += increment * F;
-        Layout::set_deformation_gradient(F, properties);
-        properties[Layout::volume] =
-          determinant(F) * properties[Layout::initial_volume];
-        const unsigned int grain = Layout::get_grain(properties);
+        const double       volume = this->store_particle_state(properties,
+                                                         stress,
+                                                         plastic_strain,
+                                                         increment);
+        const unsigned int grain  = Layout::get_grain(properties);
         strain_energy +=
-          properties[Layout::volume] *
+          volume *
           materials[grains[grain].material]->strain_energy_density(stress);
       });
   }

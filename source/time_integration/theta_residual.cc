@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/theta_residual.h>
 
@@ -9,42 +10,6 @@
 
 namespace grainmpm
 {
-  namespace
-  {
-    template <int dim>
-    Tensor<1, dim>
-    get(const LinearAlgebra::distributed::Vector<double> &vector,
-        const unsigned int                                slot)
-    {
-      Tensor<1, dim> value;
-      for (unsigned int d = 0; d < dim; ++d)
-        value[d] = vector.local_element(slot * dim + d);
-      return value;
-    }
-
-    template <int dim>
-    void
-    set(const Tensor<1, dim>                       &value,
-        LinearAlgebra::distributed::Vector<double> &vector,
-        const unsigned int                          slot)
-    {
-      for (unsigned int d = 0; d < dim; ++d)
-        vector.local_element(slot * dim + d) = value[d];
-    }
-
-    /** Outward normal of box face @p face (x-, x+, y-, ...). */
-    template <int dim>
-    Tensor<1, dim>
-    face_normal(const unsigned int face)
-    {
-      Tensor<1, dim> normal;
-      normal[face / 2] = (face % 2 == 0) ? -1. : 1.;
-      return normal;
-    }
-  } // namespace
-
-
-
   template <int dim>
   ThetaResidual<dim>::ThetaResidual(
     const ContactParameters                                    &contact,
@@ -151,6 +116,30 @@ namespace grainmpm
 
 
   template <int dim>
+  unsigned char
+  ThetaResidual<dim>::classify(const Tensor<1, dim> &relative,
+                               const Tensor<1, dim> &normal,
+                               const double          mu,
+                               Tensor<1, dim>       &slip_direction)
+  {
+    // The decisions of GrainContact::project_node() and apply_wall():
+    // approaching iff relative . n > 0; then stick if mu D >= |v_t|.
+    slip_direction        = Tensor<1, dim>();
+    const double approach = relative * normal;
+    if (!(approach > 0.))
+      return free;
+    const Tensor<1, dim> tangential = relative - approach * normal;
+    const double         slip       = tangential.norm();
+    if (mu > 0. && mu * approach >= slip)
+      return sticking;
+    if (mu > 0.)
+      slip_direction = tangential / slip;
+    return sliding;
+  }
+
+
+
+  template <int dim>
   NonlinearProblem::Change
   ThetaResidual<dim>::freeze_status(const VectorType &velocities)
   {
@@ -190,11 +179,11 @@ namespace grainmpm
           else
             {
               total_mass += masses->local_element(s);
-              momentum +=
-                masses->local_element(s) * get<dim>(trial_velocities, s);
+              momentum += masses->local_element(s) *
+                          get_slot_vector<dim>(trial_velocities, s);
             }
         if (rigid_slot >= 0)
-          reference = get<dim>(trial_velocities, rigid_slot);
+          reference = get_slot_vector<dim>(trial_velocities, rigid_slot);
         else if (total_mass > 0.)
           reference = momentum / total_mass;
         for (unsigned int s = begin; s < end; ++s)
@@ -209,24 +198,14 @@ namespace grainmpm
                   slot_state[s] = sticking;
                 continue;
               }
-            const Tensor<1, dim> normal = get<dim>(*normals, s);
+            const Tensor<1, dim> normal = get_slot_vector<dim>(*normals, s);
             if (normal.norm_square() == 0.)
               continue;
-            const Tensor<1, dim> relative =
-              get<dim>(trial_velocities, s) - reference;
-            const double approach = relative * normal;
-            if (!(approach > 0.))
-              continue;
-            const Tensor<1, dim> tangential = relative - approach * normal;
-            const double         slip       = tangential.norm();
-            if (mu > 0. && mu * approach >= slip)
-              slot_state[s] = sticking;
-            else
-              {
-                slot_state[s] = sliding;
-                if (mu > 0.)
-                  slip_directions[s] = tangential / slip;
-              }
+            slot_state[s] =
+              classify(get_slot_vector<dim>(trial_velocities, s) - reference,
+                       normal,
+                       mu,
+                       slip_directions[s]);
           }
       }
 
@@ -238,34 +217,21 @@ namespace grainmpm
         const unsigned int       s = wall_slots[w];
         const BoundaryCondition &condition =
           grid.boundary_condition(wall_faces[w]);
-        const Tensor<1, dim> normal   = face_normal<dim>(wall_faces[w]);
-        Tensor<1, dim>       velocity = get<dim>(work_projected, s);
-        wall_state[w]                 = free;
-        wall_slip_directions[w]       = Tensor<1, dim>();
+        const Tensor<1, dim> normal =
+          GrainContact<dim>::face_normal(wall_faces[w]);
+        Tensor<1, dim> velocity = get_slot_vector<dim>(work_projected, s);
+        wall_slip_directions[w] = Tensor<1, dim>();
         if (condition.type == BoundaryType::no_slip)
           wall_state[w] = sticking;
         else
-          {
-            const double approach = velocity * normal;
-            if (approach > 0.)
-              {
-                const Tensor<1, dim> tangential = velocity - approach * normal;
-                const double         slip       = tangential.norm();
-                const double mu = (condition.type == BoundaryType::friction) ?
-                                    condition.friction_coefficient :
-                                    0.;
-                if (mu > 0. && mu * approach >= slip)
-                  wall_state[w] = sticking;
-                else
-                  {
-                    wall_state[w] = sliding;
-                    if (mu > 0.)
-                      wall_slip_directions[w] = tangential / slip;
-                  }
-              }
-          }
+          wall_state[w] = classify(velocity,
+                                   normal,
+                                   (condition.type == BoundaryType::friction) ?
+                                     condition.friction_coefficient :
+                                     0.,
+                                   wall_slip_directions[w]);
         apply_wall_entry(w, velocity);
-        set<dim>(velocity, work_projected, s);
+        set_slot_vector<dim>(velocity, work_projected, s);
       }
     if (old_slot_state != slot_state || old_wall_state != wall_state)
       return Change::discrete;
@@ -302,11 +268,12 @@ namespace grainmpm
       {
         const BoundaryCondition &condition =
           grid.boundary_condition(wall_faces[w]);
-        const Tensor<1, dim> normal   = face_normal<dim>(wall_faces[w]);
-        const double         approach = velocity * normal;
-        const double         mu = (condition.type == BoundaryType::friction) ?
-                                    condition.friction_coefficient :
-                                    0.;
+        const Tensor<1, dim> normal =
+          GrainContact<dim>::face_normal(wall_faces[w]);
+        const double approach = velocity * normal;
+        const double mu       = (condition.type == BoundaryType::friction) ?
+                                  condition.friction_coefficient :
+                                  0.;
         velocity -=
           approach * normal + (mu * approach) * wall_slip_directions[w];
       }
@@ -348,7 +315,8 @@ namespace grainmpm
           else
             {
               total_mass += masses->local_element(s);
-              momentum_before += masses->local_element(s) * get<dim>(v, s);
+              momentum_before +=
+                masses->local_element(s) * get_slot_vector<dim>(v, s);
               ++n_deformable;
             }
         const bool simplified = (mode != ReferenceMode::from_vector);
@@ -357,21 +325,21 @@ namespace grainmpm
         else if (mode == ReferenceMode::zero)
           reference = Tensor<1, dim>();
         else if (rigid_slot >= 0)
-          reference = get<dim>(v, rigid_slot);
+          reference = get_slot_vector<dim>(v, rigid_slot);
         else
           reference = momentum_before / total_mass;
 
         for (unsigned int s = begin; s < end; ++s)
           if (slot_state[s] == sticking)
-            set<dim>(reference, v, s);
+            set_slot_vector<dim>(reference, v, s);
           else if (slot_state[s] == sliding)
             {
-              const Tensor<1, dim> normal   = get<dim>(*normals, s);
-              Tensor<1, dim>       velocity = get<dim>(v, s);
+              const Tensor<1, dim> normal   = get_slot_vector<dim>(*normals, s);
+              Tensor<1, dim>       velocity = get_slot_vector<dim>(v, s);
               const double         approach = (velocity - reference) * normal;
               velocity -=
                 approach * normal + (mu * approach) * slip_directions[s];
-              set<dim>(velocity, v, s);
+              set_slot_vector<dim>(velocity, v, s);
             }
 
         // Three or more deformable fields: restore the node's momentum by a
@@ -380,12 +348,13 @@ namespace grainmpm
           {
             Tensor<1, dim> momentum_after;
             for (unsigned int s = begin; s < end; ++s)
-              momentum_after += masses->local_element(s) * get<dim>(v, s);
+              momentum_after +=
+                masses->local_element(s) * get_slot_vector<dim>(v, s);
             const Tensor<1, dim> shift =
               (momentum_after - momentum_before) / total_mass;
             for (unsigned int s = begin; s < end; ++s)
               if (masses->local_element(s) > 0.)
-                set<dim>(get<dim>(v, s) - shift, v, s);
+                set_slot_vector<dim>(get_slot_vector<dim>(v, s) - shift, v, s);
           }
       }
     return n_active;
@@ -418,9 +387,9 @@ namespace grainmpm
       apply_frozen_contact(v, mode, node_in_contact);
     for (unsigned int w = 0; w < wall_slots.size(); ++w)
       {
-        Tensor<1, dim> velocity = get<dim>(v, wall_slots[w]);
+        Tensor<1, dim> velocity = get_slot_vector<dim>(v, wall_slots[w]);
         apply_wall_entry(w, velocity);
-        set<dim>(velocity, v, wall_slots[w]);
+        set_slot_vector<dim>(velocity, v, wall_slots[w]);
       }
     return n_active;
   }

@@ -24,6 +24,42 @@ namespace grainmpm
 
 
   template <int dim>
+  double
+  largest_wave_speed(
+    const std::vector<GrainInfo<dim>>                          &grains,
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+  {
+    double wave_speed = 0.;
+    for (const auto &grain : grains)
+      if (!grain.rigid)
+        wave_speed =
+          std::max(wave_speed, materials[grain.material]->wave_speed());
+    return wave_speed;
+  }
+
+
+
+  template <int dim>
+  double
+  TimeIntegrator<dim>::store_particle_state(const ArrayView<double> &properties,
+                                            const SymmetricTensor<2, 3> &stress,
+                                            const double plastic_strain,
+                                            const Tensor<2, dim> &increment)
+  {
+    using Layout = MaterialPointLayout<dim>;
+    Layout::set_stress(stress, properties);
+    properties[Layout::plastic_strain] = plastic_strain;
+    Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
+    F += increment * F;
+    Layout::set_deformation_gradient(F, properties);
+    properties[Layout::volume] =
+      determinant(F) * properties[Layout::initial_volume];
+    return properties[Layout::volume];
+  }
+
+
+
+  template <int dim>
   TimeIntegrator<dim>::TimeIntegrator(
     const Parameters<dim>                                      &parameters,
     const BackgroundGrid<dim>                                  &grid,
@@ -314,4 +350,12 @@ namespace grainmpm
 
   template class TimeIntegrator<2>;
   template class TimeIntegrator<3>;
+  template double
+  largest_wave_speed<2>(
+    const std::vector<GrainInfo<2>> &,
+    const std::vector<std::unique_ptr<ConstitutiveModel<2>>> &);
+  template double
+  largest_wave_speed<3>(
+    const std::vector<GrainInfo<3>> &,
+    const std::vector<std::unique_ptr<ConstitutiveModel<3>>> &);
 } // namespace grainmpm

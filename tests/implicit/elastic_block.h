@@ -11,15 +11,22 @@
 
 #include <string>
 
+/**
+ * The common part of the implicit tests' parameter texts: 2D, the unit
+ * square with @p n_cells^2 cells and free-slip faces, and the material
+ * "elastic" (rho = 1, E = 1000, nu = 0.3, plane strain: c = 36.69).
+ */
 inline std::string
-elastic_block_parameters(const std::string &extra = "")
+unit_square_and_material(const unsigned int n_cells)
 {
+  const std::string n = std::to_string(n_cells);
   return R"(
 set Dimension = 2
 subsection Background grid
   set Lower corner        = 0, 0
   set Upper corner        = 1, 1
-  set Number of cells     = 10, 10
+  set Number of cells     = )" +
+         n + ", " + n + R"(
   set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip
 end
 subsection Materials
@@ -29,6 +36,15 @@ subsection Materials
     set Poisson's ratio = 0.3
   end
 end
+)";
+}
+
+
+
+inline std::string
+elastic_block_parameters(const std::string &extra = "")
+{
+  return unit_square_and_material(10) + R"(
 subsection Grains
   subsection Grain 1
     set Shape    = rectangle

@@ -102,21 +102,7 @@ check_analytic_diagonal()
 void
 check_contact_diagonal()
 {
-  const std::string  text = R"(
-set Dimension = 2
-subsection Background grid
-  set Lower corner        = 0, 0
-  set Upper corner        = 1, 1
-  set Number of cells     = 10, 10
-  set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip
-end
-subsection Materials
-  subsection elastic
-    set Density         = 1
-    set Young's modulus = 1000
-    set Poisson's ratio = 0.3
-  end
-end
+  const std::string  text = unit_square_and_material(10) + R"(
 subsection Grains
   subsection Grain 1
     set Shape            = rectangle

@@ -16,26 +16,14 @@
 #include "../tests.h"
 
 #include "../implicit_fixture.h"
+#include "elastic_block.h"
 
 using namespace grainmpm;
 
 void
 run(const std::string &theta)
 {
-  const std::string text = R"(
-set Dimension = 2
-subsection Background grid
-  set Lower corner        = 0, 0
-  set Upper corner        = 1, 1
-  set Number of cells     = 20, 20
-end
-subsection Materials
-  subsection elastic
-    set Density         = 1
-    set Young's modulus = 1000
-    set Poisson's ratio = 0.3
-  end
-end
+  const std::string text = unit_square_and_material(20) + R"(
 subsection Grains
   subsection Grain 1
     set Shape            = disk

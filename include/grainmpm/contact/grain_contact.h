@@ -104,6 +104,15 @@ namespace grainmpm
                const Tensor<1, dim>    &normal,
                Tensor<1, dim>          &velocity);
 
+    /** Outward unit normal of box face @p face (x-, x+, y-, ...). */
+    static Tensor<1, dim>
+    face_normal(const unsigned int face)
+    {
+      Tensor<1, dim> normal;
+      normal[face / 2] = (face % 2 == 0) ? -1. : 1.;
+      return normal;
+    }
+
   private:
     const ContactParameters   &parameters;
     const BackgroundGrid<dim> &grid;

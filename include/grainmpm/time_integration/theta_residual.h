@@ -246,6 +246,17 @@ namespace grainmpm
                      const ReferenceMode         mode,
                      std::vector<unsigned char> *node_in_contact) const;
 
+    /**
+     * The contact state of a velocity @p relative to the partner (or wall)
+     * with normal @p normal and friction coefficient @p mu; sets the slip
+     * direction of a sliding state with friction, zero otherwise.
+     */
+    static unsigned char
+    classify(const Tensor<1, dim> &relative,
+             const Tensor<1, dim> &normal,
+             const double          mu,
+             Tensor<1, dim>       &slip_direction);
+
     /** Apply wall entry @p w with its frozen status to @p velocity. */
     void
     apply_wall_entry(const unsigned int w, Tensor<1, dim> &velocity) const;

@@ -65,6 +65,18 @@ namespace grainmpm
 
 
   /**
+   * The largest dilatational wave speed of the materials of the deformable
+   * grains (0 if there are none).
+   */
+  template <int dim>
+  double
+  largest_wave_speed(
+    const std::vector<GrainInfo<dim>>                          &grains,
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
+
+
+
+  /**
    * What the explicit and the implicit step share: the per-step transfer
    * cache and slot layout, particle-to-grid transfer of mass, momentum and
    * mass gradient, the contact normals, contact and walls, rigid grains,
@@ -162,6 +174,18 @@ namespace grainmpm
                       const double                     time,
                       const double                     dt,
                       StepStatistics                  &statistics);
+
+    /**
+     * Store the new @p stress and @p plastic_strain of a particle with
+     * @p properties, update its deformation gradient by the increment
+     * @p increment (dt grad v: F <- (I + dt grad v) F) and its volume
+     * det(F) V_0. Returns the new volume.
+     */
+    static double
+    store_particle_state(const ArrayView<double>     &properties,
+                         const SymmetricTensor<2, 3> &stress,
+                         const double                 plastic_strain,
+                         const Tensor<2, dim>        &increment);
 
     /** Remove particles that left, sort if needed. */
     void

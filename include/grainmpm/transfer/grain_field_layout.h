@@ -7,6 +7,7 @@
 #include <grainmpm/transfer/transfer_cache.h>
 
 #include <deal.II/base/partitioner.h>
+#include <deal.II/base/tensor.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
 
@@ -107,6 +108,33 @@ namespace grainmpm
     std::vector<unsigned int> node_field_scratch;
     std::vector<unsigned int> node_count_scratch;
   };
+
+
+
+  /** The vector of slot @p slot in a slot vector with dim numbers per slot. */
+  template <int dim>
+  inline Tensor<1, dim>
+  get_slot_vector(const LinearAlgebra::distributed::Vector<double> &vector,
+                  const unsigned int                                slot)
+  {
+    Tensor<1, dim> value;
+    for (unsigned int d = 0; d < dim; ++d)
+      value[d] = vector.local_element(slot * dim + d);
+    return value;
+  }
+
+
+
+  /** Set the vector of slot @p slot to @p value (dim numbers per slot). */
+  template <int dim>
+  inline void
+  set_slot_vector(const Tensor<1, dim>                       &value,
+                  LinearAlgebra::distributed::Vector<double> &vector,
+                  const unsigned int                          slot)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      vector.local_element(slot * dim + d) = value[d];
+  }
 } // namespace grainmpm
 
 #endif
