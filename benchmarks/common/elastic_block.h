@@ -74,14 +74,15 @@ namespace grainmpm::benchmarks
       prm.parse_input_from_string(text.str());
       parameters.check();
 
-      grid = std::make_unique<BackgroundGrid<2>>(parameters.grid,
-                                                 MPI_COMM_WORLD);
+      grid =
+        std::make_unique<BackgroundGrid<2>>(parameters.grid, MPI_COMM_WORLD);
       particle_handler = std::make_unique<Particles::ParticleHandler<2>>(
         grid->get_triangulation(),
         grid->get_mapping(),
         MaterialPointLayout<2>::n_properties);
-      materials.emplace_back(create_constitutive_model<2>(
-        parameters.materials[0], parameters.physics.two_dimensional_model));
+      materials.emplace_back(
+        create_constitutive_model<2>(parameters.materials[0],
+                                     parameters.physics.two_dimensional_model));
       grains = GrainGenerator<2>(parameters).generate(*grid, *particle_handler);
     }
 
