@@ -252,6 +252,8 @@ namespace grainmpm
                 }
           }
         time.advance_time();
+        grid_energy_change += statistics.grid_energy_change;
+        transfer_energy_change += statistics.transfer_energy_change;
         n_removed += statistics.n_removed;
         if (statistics.n_contact_nodes > 0)
           ++n_contact_steps;
@@ -321,9 +323,13 @@ namespace grainmpm
           << "  E_kin(end) / " << scale << " = "
           << current_energy.kinetic / reference << "\n"
           << "  E_el(end) / " << scale << " = "
-          << current_energy.elastic / reference << "\n";
+          << current_energy.elastic / reference << "\n"
+          << "  energy change by the transfers / " << scale << " = "
+          << transfer_energy_change / reference << "\n";
     if (implicit)
       {
+        pcout << "  energy change by the grid step / " << scale << " = "
+              << grid_energy_change / reference << "\n";
         const double steps = std::max(1U, time.get_step_number());
         pcout << "  Newton iterations per step (mean, max): "
               << implicit_totals.newton_iterations / steps << ", "

@@ -84,6 +84,9 @@ namespace grainmpm
     EnergySummary<dim>    current_energy;
     double                minimum_energy = 0.;
     double                maximum_energy = 0.;
+    /** Sums of the steps' grid and transfer energy changes (StepStatistics). */
+    double grid_energy_change     = 0.;
+    double transfer_energy_change = 0.;
     /** Solver counts of the implicit scheme over the run. */
     struct
     {

@@ -37,8 +37,8 @@ namespace grainmpm
            << "xyz"[d] << " [" << impulse << "]";
     file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
             "linear_iterations [1],residual_evaluations [1],"
-            "residual_rms [1],rejected_steps [1],"
-            "grid_energy_change [M L^2/T^2 per L]\n"
+            "residual_rms [1],rejected_steps [1],grid_energy_change ["
+         << energy << "],transfer_energy_change [" << energy << "]\n"
          << std::flush;
   }
 
@@ -94,7 +94,8 @@ namespace grainmpm
          << statistics.linear_iterations << ','
          << statistics.residual_evaluations << ',' << std::setprecision(4)
          << statistics.residual_norm << ',' << statistics.rejected << ','
-         << std::setprecision(12) << statistics.grid_energy_change << '\n'
+         << std::setprecision(12) << statistics.grid_energy_change << ','
+         << statistics.transfer_energy_change << '\n'
          << std::flush;
   }
 

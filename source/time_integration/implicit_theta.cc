@@ -125,8 +125,8 @@ namespace grainmpm
           {
             const unsigned int k = s * dim + d;
             kinetic_old += 0.5 * masses.local_element(s) *
-                           velocities_old.local_element(k) *
-                           velocities_old.local_element(k);
+                           velocities_p2g.local_element(k) *
+                           velocities_p2g.local_element(k);
             kinetic_new += 0.5 * masses.local_element(s) *
                            velocities_new.local_element(k) *
                            velocities_new.local_element(k);

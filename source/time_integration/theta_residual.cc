@@ -143,16 +143,18 @@ namespace grainmpm
   NonlinearProblem::Change
   ThetaResidual<dim>::freeze_status(const VectorType &velocities)
   {
-    // Contact is detected on the velocity the momentum balance asks for,
-    // V - R_raw(V) = v^n + dt (f / m + g) (the explicit scheme's v^L): a
-    // slot held by a constraint stays held while its reaction pushes, and
-    // is released when it would pull (active-set Newton).
+    // Contact is detected on the theta velocity of what the momentum
+    // balance asks for, V - R_raw(V) = v^n + dt (f / m + g) (the explicit
+    // scheme's v^L): a slot held by a constraint stays held while its
+    // reaction pushes, and is released when it would pull (active-set
+    // Newton).
     VectorType trial_velocities(velocities);
     {
       VectorType raw;
       raw.reinit(velocities, true);
       evaluate(velocities, raw, false, true);
       trial_velocities -= raw;
+      trial_velocities.sadd(theta, 1. - theta, *old_velocities);
     }
 
     const std::vector<unsigned char>  old_slot_state      = slot_state;
@@ -383,6 +385,15 @@ namespace grainmpm
     const ReferenceMode         mode,
     std::vector<unsigned char> *node_in_contact) const
   {
+    // v -> (1 - theta) v^n + theta v, project, and back. The map is affine;
+    // differences of velocities (ReferenceMode::zero) see its linear part,
+    // which is the projection itself.
+    const bool         affine = (mode != ReferenceMode::zero);
+    const unsigned int n      = v.locally_owned_size();
+    if (affine)
+      for (unsigned int k = 0; k < n; ++k)
+        v.local_element(k) = (1. - theta) * old_velocities->local_element(k) +
+                             theta * v.local_element(k);
     const unsigned int n_active =
       apply_frozen_contact(v, mode, node_in_contact);
     for (unsigned int w = 0; w < wall_slots.size(); ++w)
@@ -391,6 +402,11 @@ namespace grainmpm
         apply_wall_entry(w, velocity);
         set_slot_vector<dim>(velocity, v, wall_slots[w]);
       }
+    if (affine)
+      for (unsigned int k = 0; k < n; ++k)
+        v.local_element(k) = (v.local_element(k) -
+                              (1. - theta) * old_velocities->local_element(k)) /
+                             theta;
     return n_active;
   }
 

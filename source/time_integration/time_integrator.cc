@@ -243,7 +243,8 @@ namespace grainmpm
     const Point<dim>     &lower = grid.lower_corner();
     const Point<dim>     &upper = grid.upper_corner();
     Vector<double>        prescribed(dim);
-    double                max_speed_square = 0.;
+    double                max_speed_square        = 0.;
+    double                particle_kinetic_change = 0.;
 
     std::size_t p = 0;
     for_each_particle(
@@ -291,10 +292,14 @@ namespace grainmpm
                       (v_new - velocities_p2g.local_element(slot * dim + d));
                   }
               }
+            const Tensor<1, dim> old_velocity =
+              Layout::get_velocity(properties);
             new_velocity =
-              flip * (Layout::get_velocity(properties) + increment) +
-              (1. - flip) * interpolated;
+              flip * (old_velocity + increment) + (1. - flip) * interpolated;
             new_position = old_position + dt * moved;
+            particle_kinetic_change +=
+              0.5 * properties[Layout::mass] *
+              (new_velocity.norm_square() - old_velocity.norm_square());
           }
         Layout::set_velocity(new_velocity, properties);
         max_speed_square =
@@ -344,6 +349,21 @@ namespace grainmpm
           statistics.sorted = true;
       });
     statistics.max_speed = std::sqrt(max_speed_square);
+
+    double grid_kinetic_change = 0.;
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      if (!field_is_rigid[layout.field(s)])
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const unsigned int k = s * dim + d;
+            grid_kinetic_change += 0.5 * masses.local_element(s) *
+                                   (velocities_new.local_element(k) *
+                                      velocities_new.local_element(k) -
+                                    velocities_p2g.local_element(k) *
+                                      velocities_p2g.local_element(k));
+          }
+    statistics.transfer_energy_change =
+      particle_kinetic_change - grid_kinetic_change;
   }
 
 

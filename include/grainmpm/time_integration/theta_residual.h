@@ -38,10 +38,23 @@ namespace grainmpm
    * over the particles of the slot's grain, with
    * sigma^theta = (1 - theta) sigma^n + theta Phi(sigma^n, dt grad v^theta),
    * V^theta = (1 - theta) V^n + theta det(I + dt grad v^theta) V^n, and
-   * v^theta = (1 - theta) v^n + theta Pi(V), Pi being the contact
+   * v^theta = Pi((1 - theta) v^n + theta V), Pi being the contact
    * projection and the wall conditions with the contact status frozen by
-   * freeze_status(). Slots of rigid grains have R = V - (prescribed
-   * velocity at t + dt); slots without mass R = V - v^n.
+   * freeze_status(). The projected end velocity is
+   * Pi_theta(V) = (v^theta - (1 - theta) v^n) / theta. Slots of rigid
+   * grains have R = V - (prescribed velocity at t + dt); slots without
+   * mass R = V - v^n.
+   *
+   * The constraints act on v^theta, the velocity that moves the particles
+   * and strains them, not on v^{n+1}: then no grain moves into another or
+   * into a wall within the step, and a frictionless reaction does no work,
+   * because it is normal to v^theta - v_ref where it acts. With theta = 1/2
+   * the grid step then conserves energy through contact and wall impacts
+   * (doc/validation.md). Constraining v^{n+1} instead (reference/physics.md
+   * 4.4) lets the reaction do work wherever a slot separating at t^n is
+   * pushed back, which gained 75 % of E0 in five wall impacts of
+   * prm/single_grain_rebound_implicit.prm. Status decisions are taken on
+   * the trial theta velocity accordingly.
    *
    * Everything the residual reads at t^n is copied once per step into flat
    * arrays in the order of the TransferCache (stress, volume, history,
@@ -148,8 +161,9 @@ namespace grainmpm
              const bool        raw        = false) const;
 
     /**
-     * The contact- and wall-projected velocities Pi(@p velocities) with the
-     * frozen status. Returns the number of nodes where contact is active.
+     * The contact- and wall-projected end velocities Pi_theta(@p
+     * velocities) with the frozen status: the projection acts on the theta
+     * velocity. Returns the number of nodes where contact is active.
      */
     unsigned int
     project(const VectorType           &velocities,
@@ -240,7 +254,12 @@ namespace grainmpm
                          const ReferenceMode         mode,
                          std::vector<unsigned char> *node_flags) const;
 
-    /** Frozen contact, then frozen walls, on @p v in place. */
+    /**
+     * Frozen contact, then frozen walls, on the end velocities @p v in
+     * place, acting on the theta velocity (1 - theta) v^n + theta v; with
+     * ReferenceMode::zero the linear part of that map, which acts on
+     * differences of velocities directly.
+     */
     unsigned int
     apply_projection(VectorType                 &v,
                      const ReferenceMode         mode,

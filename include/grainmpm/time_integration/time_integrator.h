@@ -54,10 +54,22 @@ namespace grainmpm
     unsigned int status_changes = 0;
     /**
      * Implicit scheme: change of the grid energy 1/2 sum m v^2 + sum V W
-     * over the step (the time integrator's share of the energy balance;
-     * the rest is the particle-grid transfers).
+     * of the deformable grains over the step, from the particle-to-grid
+     * velocities (so including the contact pass on v^n) to the end
+     * velocities: the time integrator's share of the energy balance. With
+     * transfer_energy_change it adds up to the change of the particles'
+     * kinetic plus elastic energy (without gravity and removed particles).
      */
     double grid_energy_change = 0.;
+    /**
+     * Both schemes: what the grid-to-particle velocity update adds to the
+     * kinetic energy of the deformable particles beyond the change of the
+     * grid kinetic energy it maps, sum_p 1/2 m_p |v_p|^2 (after - before)
+     * - sum_s 1/2 m_s (|v_s^new|^2 - |v_s^p2g|^2). For FLIP it is
+     * -1/2 (sum_s m_s |dv_s|^2 - sum_p m_p |sum_s S_sp dv_s|^2) <= 0: the
+     * lumped-mass loss of Cummins & Brackbill, which the grid cannot see.
+     */
+    double transfer_energy_change = 0.;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
   };
