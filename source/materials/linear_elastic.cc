@@ -45,7 +45,42 @@ namespace grainmpm
     // sym(dt grad v) and the spin increment skw(dt grad v) live in the
     // first dim rows and columns; in 2D the out-of-plane ones are zero.
     const Tensor<2, dim> &L = displacement_gradient_increment;
-    double                spin[dim][dim];
+    if constexpr (dim == 2)
+      {
+        // The general code below written out for 2D, in the same order of
+        // operations and without the zero diagonal of the spin (the same
+        // results); the implicit residual calls this once per particle and
+        // evaluation.
+        const double w01        = 0.5 * (L[0][1] - L[1][0]);
+        const double w10        = 0.5 * (L[1][0] - L[0][1]);
+        const double s00        = stress.access_raw_entry(0);
+        const double s11        = stress.access_raw_entry(1);
+        const double s22        = stress.access_raw_entry(2);
+        const double s01        = stress.access_raw_entry(3);
+        const double s02        = stress.access_raw_entry(4);
+        const double s12        = stress.access_raw_entry(5);
+        double       r00        = s00 + w01 * s01 - s01 * w10;
+        double       r01        = s01 + w01 * s11 - s00 * w01;
+        double       r11        = s11 + w10 * s01 - s01 * w01;
+        const double r02        = s02 + w01 * s12;
+        const double r12        = s12 + w10 * s02;
+        double       r22        = s22;
+        const double volumetric = L[0][0] + L[1][1];
+        r00 += 2. * mu * L[0][0] + lambda * volumetric;
+        r01 += mu * (L[0][1] + L[1][0]);
+        r11 += 2. * mu * L[1][1] + lambda * volumetric;
+        if (!plane_stress)
+          r22 += lambda * volumetric;
+        SymmetricTensor<2, 3> new_stress;
+        new_stress.access_raw_entry(0) = r00;
+        new_stress.access_raw_entry(1) = r11;
+        new_stress.access_raw_entry(2) = r22;
+        new_stress.access_raw_entry(3) = r01;
+        new_stress.access_raw_entry(4) = r02;
+        new_stress.access_raw_entry(5) = r12;
+        return new_stress;
+      }
+    double spin[dim][dim];
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int k = 0; k < dim; ++k)
         spin[i][k] = 0.5 * (L[i][k] - L[k][i]);

@@ -5,6 +5,7 @@
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/theta_residual.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -106,6 +107,7 @@ namespace grainmpm
     slip_directions.assign(n_slots, Tensor<1, dim>());
     frozen_references.assign(n_slots, Tensor<1, dim>());
     wall_state.assign(wall_slots.size(), free);
+    any_constraint_active = false;
     wall_slip_directions.assign(wall_slots.size(), Tensor<1, dim>());
 
     work_projected.reinit(old_velocities, true);
@@ -235,6 +237,13 @@ namespace grainmpm
         apply_wall_entry(w, velocity);
         set_slot_vector<dim>(velocity, work_projected, s);
       }
+    any_constraint_active =
+      std::any_of(slot_state.begin(),
+                  slot_state.end(),
+                  [](const unsigned char state) { return state != free; }) ||
+      std::any_of(wall_state.begin(),
+                  wall_state.end(),
+                  [](const unsigned char state) { return state != free; });
     if (old_slot_state != slot_state || old_wall_state != wall_state)
       return Change::discrete;
     if (old_slip_directions != slip_directions ||
@@ -387,7 +396,10 @@ namespace grainmpm
   {
     // v -> (1 - theta) v^n + theta v, project, and back. The map is affine;
     // differences of velocities (ReferenceMode::zero) see its linear part,
-    // which is the projection itself.
+    // which is the projection itself. With every slot free it is the
+    // identity.
+    if (!any_constraint_active)
+      return 0;
     const bool         affine = (mode != ReferenceMode::zero);
     const unsigned int n      = v.locally_owned_size();
     if (affine)
@@ -492,28 +504,58 @@ namespace grainmpm
       !wall_slots.empty();
     theta_velocities(work_projected, work_theta);
 
-    // Internal forces from the time-centred stress and volume (eqs. 12-13).
-    work_forces                      = 0.;
-    bool                 inverted    = false;
-    const Tensor<2, dim> unit        = unit_symmetric_tensor<dim>();
-    const std::size_t    n_particles = particle_models.size();
+    // Internal forces from the time-centred stress and volume (eqs. 12-13),
+    // on raw pointers and local copies of theta and dt: stores into the
+    // forces could otherwise alias them, and they would be reloaded for
+    // every particle.
+    work_forces                              = 0.;
+    bool                        inverted     = false;
+    const double                theta_local  = theta;
+    const double                dt_local     = dt;
+    const double *const         theta_values = work_theta.begin();
+    double *const               forces       = work_forces.begin();
+    const unsigned int *const   slots        = cache->slots.data();
+    const Tensor<1, dim> *const gradients    = cache->shape_gradients.data();
+    const std::size_t           n_particles  = particle_models.size();
     for (std::size_t p = 0; p < n_particles; ++p)
       {
-        if (particle_models[p] == nullptr)
+        const ConstitutiveModel<dim> *const model = particle_models[p];
+        if (model == nullptr)
           continue;
-        SymmetricTensor<2, 3> new_stress;
-        double                plastic_strain;
-        Tensor<2, dim>        increment;
-        compute_particle(p, work_theta, new_stress, plastic_strain, increment);
-        // V^theta sigma^theta in the plane, on a plain array. A trial that
-        // inverts a particle (det(I + dt grad v) <= 0) has no meaning: its
-        // residual is NaN, which the line search and the failure policy
-        // reject.
-        const double jacobian = determinant(unit + increment);
+        const unsigned int offset = p * per_particle;
+
+        // dt grad v^theta.
+        Tensor<2, dim> increment;
+        for (unsigned int v = 0; v < per_particle; ++v)
+          {
+            const unsigned int    slot     = slots[offset + v];
+            const Tensor<1, dim> &gradient = gradients[offset + v];
+            for (unsigned int i = 0; i < dim; ++i)
+              {
+                const double velocity = theta_values[slot * dim + i];
+                for (unsigned int j = 0; j < dim; ++j)
+                  increment[i][j] += velocity * gradient[j];
+              }
+          }
+        increment *= dt_local;
+        double plastic_strain                   = particle_plastic_strains[p];
+        const SymmetricTensor<2, 3> &old_stress = particle_stresses[p];
+        const SymmetricTensor<2, 3>  new_stress =
+          model->update_stress(old_stress, increment, plastic_strain);
+
+        // V^theta sigma^theta in the plane. A trial that inverts a particle
+        // (det(I + dt grad v) <= 0) has no meaning: its residual is NaN,
+        // which the line search and the failure policy reject.
+        double jacobian;
+        if constexpr (dim == 2)
+          jacobian = (1. + increment[0][0]) * (1. + increment[1][1]) -
+                     increment[0][1] * increment[1][0];
+        else
+          jacobian = determinant(unit_symmetric_tensor<dim>() + increment);
         if (!(jacobian > 0.))
           inverted = true;
         const double volume =
-          particle_volumes[p] * ((1. - theta) + theta * jacobian);
+          particle_volumes[p] * ((1. - theta_local) + theta_local * jacobian);
         double stress[dim][dim];
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
@@ -522,21 +564,19 @@ namespace grainmpm
                 SymmetricTensor<2, 3>::component_to_unrolled_index(
                   TableIndices<2>(i, j));
               stress[i][j] = stress[j][i] =
-                volume *
-                ((1. - theta) * particle_stresses[p].access_raw_entry(k) +
-                 theta * new_stress.access_raw_entry(k));
+                volume * ((1. - theta_local) * old_stress.access_raw_entry(k) +
+                          theta_local * new_stress.access_raw_entry(k));
             }
-        const unsigned int offset = p * per_particle;
         for (unsigned int v = 0; v < per_particle; ++v)
           {
-            const unsigned int    slot     = cache->slots[offset + v];
-            const Tensor<1, dim> &gradient = cache->shape_gradients[offset + v];
+            const unsigned int    slot     = slots[offset + v];
+            const Tensor<1, dim> &gradient = gradients[offset + v];
             for (unsigned int i = 0; i < dim; ++i)
               {
                 double divergence = 0.;
                 for (unsigned int j = 0; j < dim; ++j)
                   divergence += stress[i][j] * gradient[j];
-                work_forces.local_element(slot * dim + i) -= divergence;
+                forces[slot * dim + i] -= divergence;
               }
           }
       }

@@ -312,6 +312,9 @@ namespace grainmpm
     std::vector<bool> slot_active;
     std::vector<bool> slot_rigid;
 
+    /** Whether any slot or wall entry is not free. */
+    bool any_constraint_active = false;
+
     /** Frozen contact status per slot, slip directions, frozen v_ref. */
     std::vector<unsigned char>  slot_state;
     std::vector<Tensor<1, dim>> slip_directions;
