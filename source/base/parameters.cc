@@ -219,8 +219,11 @@ namespace grainmpm
     prm.add_parameter("Constitutive model",
                       constitutive_model,
                       "The stress update of this material: 'linear elastic' "
-                      "(hypoelastic, Jaumann-rotated). Dimensionless.",
-                      Patterns::Selection("linear elastic"));
+                      "(hypoelastic, Jaumann-rotated) or 'von Mises' (the "
+                      "same elasticity with J2 plasticity and linear "
+                      "isotropic hardening, radial return; needs Yield "
+                      "stress). Dimensionless.",
+                      Patterns::Selection("linear elastic|von Mises"));
     prm.add_parameter("Density",
                       density,
                       "Mass density in the reference configuration. Must be "
@@ -236,6 +239,34 @@ namespace grainmpm
                       poissons_ratio,
                       "Poisson's ratio nu, in (-1, 0.5). Dimensionless.",
                       Patterns::Double(-1., 0.5));
+    prm.add_parameter("Yield stress",
+                      yield_stress,
+                      "von Mises: the initial uniaxial yield stress sigma_y "
+                      "(the von Mises stress q = sqrt(3/2 s:s) at first "
+                      "yield). Must be positive for 'von Mises'; ignored "
+                      "otherwise. Units: stress.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Hardening modulus",
+                      hardening_modulus,
+                      "von Mises: the plastic modulus H of linear isotropic "
+                      "hardening, sigma_Y = sigma_y + H epsilon_p (from a "
+                      "bilinear curve with tangent modulus E_t: "
+                      "H = E E_t / (E - E_t)); 0 is perfect plasticity. "
+                      "Units: stress.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Thickness",
+                      thickness,
+                      "Photoelastic output: thickness t of the specimen in "
+                      "the fringe order N = t (sigma_1 - sigma_2) / f_sigma. "
+                      "Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Material fringe value",
+                      material_fringe_value,
+                      "Photoelastic output: the material fringe value "
+                      "f_sigma (stress times length per fringe; Homalite-100 "
+                      "about 23 kN/m). 0 means not photoelastic: the fringe "
+                      "order is written as 0. Units: stress length.",
+                      Patterns::Double(0.));
   }
 
 
@@ -256,6 +287,10 @@ namespace grainmpm
       throw InputError(entry + "Poisson's ratio",
                        "must lie strictly between -1 and 0.5, but is " +
                          std::to_string(poissons_ratio) + ".");
+    if (constitutive_model == "von Mises" && !(yield_stress > 0.))
+      throw InputError(entry + "Yield stress",
+                       "must be positive for the 'von Mises' model, but is " +
+                         std::to_string(yield_stress) + ".");
   }
 
 

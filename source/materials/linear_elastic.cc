@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-#include <grainmpm/base/input_error.h>
 #include <grainmpm/materials/linear_elastic.h>
 
 #include <cmath>
@@ -138,21 +137,9 @@ namespace grainmpm
   LinearElastic<dim>::strain_energy_density(
     const SymmetricTensor<2, 3> &stress) const
   {
-    // 1/2 sigma : C^{-1} : sigma for isotropic elasticity in 3D; with the
-    // plane strain sigma_zz or the plane stress sigma_zz = 0 this is the
-    // corresponding 2D energy.
-    const double E  = youngs_modulus;
-    const double nu = poissons_ratio;
-    const double normal =
-      stress[0][0] * stress[0][0] + stress[1][1] * stress[1][1] +
-      stress[2][2] * stress[2][2] -
-      2. * nu *
-        (stress[0][0] * stress[1][1] + stress[1][1] * stress[2][2] +
-         stress[2][2] * stress[0][0]);
-    const double shear = stress[0][1] * stress[0][1] +
-                         stress[0][2] * stress[0][2] +
-                         stress[1][2] * stress[1][2];
-    return normal / (2. * E) + (1. + nu) * shear / E;
+    return isotropic_strain_energy_density(stress,
+                                           youngs_modulus,
+                                           poissons_ratio);
   }
 
 
@@ -175,28 +162,6 @@ namespace grainmpm
 
 
 
-  template <int dim>
-  std::unique_ptr<ConstitutiveModel<dim>>
-  create_constitutive_model(const MaterialParameters &material,
-                            const TwoDimensionalModel model)
-  {
-    if (material.constitutive_model == "linear elastic")
-      return std::make_unique<LinearElastic<dim>>(material.density,
-                                                  material.youngs_modulus,
-                                                  material.poissons_ratio,
-                                                  model);
-    throw InputError("Materials/" + material.name + "/Constitutive model",
-                     "unknown model '" + material.constitutive_model + "'.");
-  }
-
-
-
   template class LinearElastic<2>;
   template class LinearElastic<3>;
-  template std::unique_ptr<ConstitutiveModel<2>>
-  create_constitutive_model<2>(const MaterialParameters &,
-                               const TwoDimensionalModel);
-  template std::unique_ptr<ConstitutiveModel<3>>
-  create_constitutive_model<3>(const MaterialParameters &,
-                               const TwoDimensionalModel);
 } // namespace grainmpm

@@ -93,6 +93,12 @@ namespace grainmpm
     double      density            = 1.;
     double      youngs_modulus     = 1.;
     double      poissons_ratio     = 0.3;
+    /** von Mises: initial yield stress and plastic hardening modulus. */
+    double yield_stress      = 0.;
+    double hardening_modulus = 0.;
+    /** Photoelastic output: specimen thickness and material fringe value. */
+    double thickness             = 1.;
+    double material_fringe_value = 0.;
 
     void
     declare(ParameterHandler &prm);

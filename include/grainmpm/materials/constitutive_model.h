@@ -52,7 +52,40 @@ namespace grainmpm
     /** Mass density. */
     virtual double
     density() const = 0;
+
+    /**
+     * Whether update_stress() reads and writes the history variable
+     * (plastic strain); if not, callers may pass any value.
+     */
+    virtual bool
+    has_history() const
+    {
+      return false;
+    }
+
+    /**
+     * The plastic work per unit volume, sigma : de_p, of a step that ended
+     * at @p new_stress and increased the equivalent plastic strain by
+     * @p plastic_strain_increment. Zero for elastic models.
+     */
+    virtual double
+    plastic_work_density(const SymmetricTensor<2, 3> & /*new_stress*/,
+                         const double /*plastic_strain_increment*/) const
+    {
+      return 0.;
+    }
   };
+
+  /**
+   * 1/2 sigma : C^{-1} : sigma of isotropic elasticity with Young's modulus
+   * @p youngs_modulus and Poisson's ratio @p poissons_ratio, in 3D
+   * components; with the plane-strain sigma_zz or the plane-stress
+   * sigma_zz = 0 it is the corresponding 2D energy. Units: stress.
+   */
+  double
+  isotropic_strain_energy_density(const SymmetricTensor<2, 3> &stress,
+                                  const double                 youngs_modulus,
+                                  const double                 poissons_ratio);
 
   /**
    * Create the model named in @p material for the two-dimensional

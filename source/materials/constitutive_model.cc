@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/materials/constitutive_model.h>
+#include <grainmpm/materials/linear_elastic.h>
+#include <grainmpm/materials/von_mises.h>
+
+namespace grainmpm
+{
+  double
+  isotropic_strain_energy_density(const SymmetricTensor<2, 3> &stress,
+                                  const double                 youngs_modulus,
+                                  const double                 poissons_ratio)
+  {
+    const double E  = youngs_modulus;
+    const double nu = poissons_ratio;
+    const double normal =
+      stress[0][0] * stress[0][0] + stress[1][1] * stress[1][1] +
+      stress[2][2] * stress[2][2] -
+      2. * nu *
+        (stress[0][0] * stress[1][1] + stress[1][1] * stress[2][2] +
+         stress[2][2] * stress[0][0]);
+    const double shear = stress[0][1] * stress[0][1] +
+                         stress[0][2] * stress[0][2] +
+                         stress[1][2] * stress[1][2];
+    return normal / (2. * E) + (1. + nu) * shear / E;
+  }
+
+
+
+  template <int dim>
+  std::unique_ptr<ConstitutiveModel<dim>>
+  create_constitutive_model(const MaterialParameters &material,
+                            const TwoDimensionalModel model)
+  {
+    if (material.constitutive_model == "linear elastic")
+      return std::make_unique<LinearElastic<dim>>(material.density,
+                                                  material.youngs_modulus,
+                                                  material.poissons_ratio,
+                                                  model);
+    if (material.constitutive_model == "von Mises")
+      return std::make_unique<VonMises<dim>>(material.density,
+                                             material.youngs_modulus,
+                                             material.poissons_ratio,
+                                             material.yield_stress,
+                                             material.hardening_modulus,
+                                             model);
+    throw InputError("Materials/" + material.name + "/Constitutive model",
+                     "unknown model '" + material.constitutive_model + "'.");
+  }
+
+
+
+  template std::unique_ptr<ConstitutiveModel<2>>
+  create_constitutive_model<2>(const MaterialParameters &,
+                               const TwoDimensionalModel);
+  template std::unique_ptr<ConstitutiveModel<3>>
+  create_constitutive_model<3>(const MaterialParameters &,
+                               const TwoDimensionalModel);
+} // namespace grainmpm

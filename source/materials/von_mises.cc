@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/materials/von_mises.h>
+
+#include <cmath>
+
+namespace grainmpm
+{
+  namespace
+  {
+    /** q = sqrt(3/2 s : s) of a stress. */
+    double
+    equivalent_stress(const SymmetricTensor<2, 3> &stress)
+    {
+      const SymmetricTensor<2, 3> s = deviator(stress);
+      return std::sqrt(1.5 * (s * s));
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  VonMises<dim>::VonMises(const double              density,
+                          const double              youngs_modulus,
+                          const double              poissons_ratio,
+                          const double              yield_stress,
+                          const double              hardening_modulus,
+                          const TwoDimensionalModel model)
+    : mass_density(density)
+    , youngs_modulus(youngs_modulus)
+    , poissons_ratio(poissons_ratio)
+    , yield_stress(yield_stress)
+    , hardening_modulus(hardening_modulus)
+    , plane_stress(dim == 2 && model == TwoDimensionalModel::plane_stress)
+    , lambda(youngs_modulus * poissons_ratio /
+             ((1. + poissons_ratio) * (1. - 2. * poissons_ratio)))
+    , mu(youngs_modulus / (2. * (1. + poissons_ratio)))
+    , dilatational_wave_speed(
+        plane_stress ?
+          std::sqrt(youngs_modulus /
+                    (density * (1. - poissons_ratio * poissons_ratio))) :
+          std::sqrt((lambda + 2. * mu) / density))
+  {}
+
+
+
+  template <int dim>
+  SymmetricTensor<2, 3>
+  VonMises<dim>::radial_return(const SymmetricTensor<2, 3> &rotated,
+                               const SymmetricTensor<2, 3> &strain,
+                               const double                 plastic_strain,
+                               double                      &plastic_increment,
+                               double                      &tangent_zzzz) const
+  {
+    const SymmetricTensor<2, 3> trial =
+      rotated + lambda * trace(strain) * unit_symmetric_tensor<3>() +
+      2. * mu * strain;
+    const SymmetricTensor<2, 3> s_trial = deviator(trial);
+    const double                q_trial = std::sqrt(1.5 * (s_trial * s_trial));
+    const double                f_trial =
+      q_trial - (yield_stress + hardening_modulus * plastic_strain);
+    if (!(f_trial > 0.))
+      {
+        plastic_increment = 0.;
+        tangent_zzzz      = lambda + 2. * mu;
+        return trial;
+      }
+    plastic_increment  = f_trial / (3. * mu + hardening_modulus);
+    const double beta  = 1. - 3. * mu * plastic_increment / q_trial;
+    const double kappa = lambda + 2. * mu / 3.;
+    // The consistent tangent (physics.md 6.3), its zz-zz component, with
+    // N = s / |s| (unit Frobenius norm).
+    const double n_zz = s_trial[2][2] / s_trial.norm();
+    const double gamma_bar =
+      1. / (1. + hardening_modulus / (3. * mu)) - (1. - beta);
+    tangent_zzzz =
+      kappa + 2. * mu * beta * (2. / 3.) - 2. * mu * gamma_bar * n_zz * n_zz;
+    return beta * s_trial + (trace(trial) / 3.) * unit_symmetric_tensor<3>();
+  }
+
+
+
+  template <int dim>
+  SymmetricTensor<2, 3>
+  VonMises<dim>::update_stress(
+    const SymmetricTensor<2, 3> &stress,
+    const Tensor<2, dim>        &displacement_gradient_increment,
+    double                      &plastic_strain) const
+  {
+    // Strain and spin increments in 3D components (zero out of plane).
+    const Tensor<2, dim> &L = displacement_gradient_increment;
+    Tensor<2, 3>          spin;
+    SymmetricTensor<2, 3> strain;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        {
+          spin[i][j] = 0.5 * (L[i][j] - L[j][i]);
+          if (j >= i)
+            strain[i][j] = 0.5 * (L[i][j] + L[j][i]);
+        }
+
+    // Jaumann rotation of the old stress: sigma + dW sigma - sigma dW.
+    const Tensor<2, 3>          old = stress;
+    const SymmetricTensor<2, 3> rotated =
+      symmetrize(old + spin * old - old * spin);
+
+    double                plastic_increment = 0.;
+    double                tangent_zzzz      = lambda + 2. * mu;
+    SymmetricTensor<2, 3> new_stress;
+    if (!plane_stress)
+      new_stress = radial_return(
+        rotated, strain, plastic_strain, plastic_increment, tangent_zzzz);
+    else
+      {
+        // Find de_zz with sigma_zz = 0: the elastic guess is exact for an
+        // elastic step; plastic steps converge in a few Newton steps.
+        const double scale = std::abs(yield_stress) + rotated.norm() +
+                             youngs_modulus * strain.norm();
+        strain[2][2] =
+          -(rotated[2][2] + lambda * trace(strain)) / (lambda + 2. * mu);
+        for (unsigned int iteration = 0;; ++iteration)
+          {
+            new_stress = radial_return(
+              rotated, strain, plastic_strain, plastic_increment, tangent_zzzz);
+            if (std::abs(new_stress[2][2]) <= 1e-13 * scale)
+              break;
+            AssertThrow(iteration < 50,
+                        ExcMessage("the plane-stress return of the von Mises "
+                                   "model did not converge"));
+            strain[2][2] -= new_stress[2][2] / tangent_zzzz;
+          }
+        new_stress[2][2] = 0.;
+      }
+    plastic_strain += plastic_increment;
+    return new_stress;
+  }
+
+
+
+  template <int dim>
+  double
+  VonMises<dim>::strain_energy_density(
+    const SymmetricTensor<2, 3> &stress) const
+  {
+    // The elastic part.
+    return isotropic_strain_energy_density(stress,
+                                           youngs_modulus,
+                                           poissons_ratio);
+  }
+
+
+
+  template <int dim>
+  double
+  VonMises<dim>::plastic_work_density(
+    const SymmetricTensor<2, 3> &new_stress,
+    const double                 plastic_strain_increment) const
+  {
+    // sigma : de_p with de_p = 3/2 d epsilon_p s / q: q d epsilon_p.
+    return equivalent_stress(new_stress) * plastic_strain_increment;
+  }
+
+
+
+  template <int dim>
+  double
+  VonMises<dim>::wave_speed() const
+  {
+    return dilatational_wave_speed;
+  }
+
+
+
+  template <int dim>
+  double
+  VonMises<dim>::density() const
+  {
+    return mass_density;
+  }
+
+
+
+  template <int dim>
+  bool
+  VonMises<dim>::has_history() const
+  {
+    return true;
+  }
+
+
+
+  template class VonMises<2>;
+  template class VonMises<3>;
+} // namespace grainmpm
