@@ -119,6 +119,7 @@ namespace grainmpm
                                                "/energy.csv",
                                              grains,
                                              materials,
+                                             parameters.physics.gravity,
                                              communicator);
       grain_history =
         std::make_unique<GrainHistory<dim>>(parameters.output.directory +
@@ -154,7 +155,9 @@ namespace grainmpm
 
     initial_energy = current_energy = energy_history->compute(particle_handler);
     minimum_energy = maximum_energy = initial_energy.total();
-    energy_history->write_row(0, 0., 0., initial_energy, StepStatistics());
+    largest_kinetic_elastic = initial_energy.kinetic + initial_energy.elastic;
+    energy_history->write_row(
+      0, 0., 0., initial_energy, StepStatistics(), ledger, initial_energy);
     write_output(0, 0., 0.);
 
     const double end_time        = parameters.time_stepping.end_time;
@@ -253,7 +256,7 @@ namespace grainmpm
           }
         time.advance_time();
         grid_energy_change += statistics.grid_energy_change;
-        transfer_energy_change += statistics.transfer_energy_change;
+        ledger.add(statistics);
         n_removed += statistics.n_removed;
         if (statistics.n_contact_nodes > 0)
           ++n_contact_steps;
@@ -269,9 +272,17 @@ namespace grainmpm
                                     time.get_current_time(),
                                     time.get_previous_step_size(),
                                     current_energy,
-                                    statistics);
+                                    statistics,
+                                    ledger,
+                                    initial_energy);
           minimum_energy = std::min(minimum_energy, current_energy.total());
           maximum_energy = std::max(maximum_energy, current_energy.total());
+          largest_kinetic_elastic =
+            std::max(largest_kinetic_elastic,
+                     current_energy.kinetic + current_energy.elastic);
+          largest_balance =
+            std::max(largest_balance,
+                     std::abs(ledger.balance(current_energy, initial_energy)));
         }
         if (!std::isfinite(current_energy.total()))
           throw InputError("Time stepping",
@@ -305,10 +316,17 @@ namespace grainmpm
     // Final summary: O(1) numbers, fit for the regression tests. Energies
     // are relative to the initial total energy, or to the largest one if
     // the run starts at rest.
-    const bool   starts_at_rest = !(initial_energy.total() > 0.);
-    const double reference = starts_at_rest ? std::max(maximum_energy, 1e-300) :
-                                              initial_energy.total();
-    const std::string scale = starts_at_rest ? "E_max" : "E_total(0)";
+    const bool        starts_at_rest = !(initial_energy.total() > 0.);
+    const double      reference      = starts_at_rest ?
+                                         std::max(largest_kinetic_elastic, 1e-300) :
+                                         initial_energy.total();
+    const std::string scale          = starts_at_rest ? "E_max" : "E_total(0)";
+    for (const auto &particle : particle_handler)
+      largest_plastic_strain = std::max(
+        largest_plastic_strain,
+        particle.get_properties()[MaterialPointLayout<dim>::plastic_strain]);
+    largest_plastic_strain =
+      Utilities::MPI::max(largest_plastic_strain, communicator);
     pcout << "\nfinished: " << time.get_step_number()
           << " steps to t = " << time.get_current_time() << "\n"
           << "  steps with contact:       " << n_contact_steps << "\n"
@@ -324,8 +342,15 @@ namespace grainmpm
           << current_energy.kinetic / reference << "\n"
           << "  E_el(end) / " << scale << " = "
           << current_energy.elastic / reference << "\n"
-          << "  energy change by the transfers / " << scale << " = "
-          << transfer_energy_change / reference << "\n";
+          << "  energy ledger / " << scale
+          << ": plastic work = " << ledger.plastic_work / reference
+          << ", friction work = " << ledger.friction_work / reference
+          << ", boundary work = " << ledger.boundary_work / reference
+          << ", transfers = " << ledger.transfer / reference
+          << ", balance residual = "
+          << ledger.balance(current_energy, initial_energy) / reference
+          << " (largest " << largest_balance / reference << ")\n"
+          << "  largest plastic strain:   " << largest_plastic_strain << "\n";
     if (implicit)
       {
         pcout << "  energy change by the grid step / " << scale << " = "

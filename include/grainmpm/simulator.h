@@ -84,9 +84,15 @@ namespace grainmpm
     EnergySummary<dim>    current_energy;
     double                minimum_energy = 0.;
     double                maximum_energy = 0.;
-    /** Sums of the steps' grid and transfer energy changes (StepStatistics). */
-    double grid_energy_change     = 0.;
-    double transfer_energy_change = 0.;
+    /** Sum of the steps' grid energy changes (StepStatistics). */
+    double grid_energy_change = 0.;
+    /** The energy ledger since the start. */
+    EnergyLedger ledger;
+    /** Largest |balance residual| and largest kinetic + elastic energy. */
+    double largest_balance         = 0.;
+    double largest_kinetic_elastic = 0.;
+    /** Largest equivalent plastic strain at the end. */
+    double largest_plastic_strain = 0.;
     /** Solver counts of the implicit scheme over the run. */
     struct
     {

@@ -16,8 +16,10 @@ namespace grainmpm
     const std::string                                          &filename,
     const std::vector<GrainInfo<dim>>                          &grains,
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+    const Tensor<1, dim>                                       &gravity,
     const MPI_Comm                                              communicator)
-    : grains(grains)
+    : gravity(gravity)
+    , grains(grains)
     , materials(materials)
     , communicator(communicator)
   {
@@ -32,13 +34,19 @@ namespace grainmpm
     file << "step,time [T],dt [T],kinetic_energy [" << energy
          << "],elastic_energy [" << energy << "],total_energy [" << energy
          << "]";
+    // The total is kinetic + elastic + gravity_potential (further right).
+
     for (unsigned int d = 0; d < dim; ++d)
       file << ",momentum_"
            << "xyz"[d] << " [" << impulse << "]";
     file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
             "linear_iterations [1],residual_evaluations [1],"
             "residual_rms [1],rejected_steps [1],grid_energy_change ["
-         << energy << "],transfer_energy_change [" << energy << "]\n"
+         << energy << "],transfer_energy_change [" << energy
+         << "],gravity_potential [" << energy << "],plastic_work [" << energy
+         << "],friction_work [" << energy << "],boundary_work [" << energy
+         << "],transfer_work [" << energy << "],balance_residual [" << energy
+         << "]\n"
          << std::flush;
   }
 
@@ -47,10 +55,11 @@ namespace grainmpm
   template <int dim>
   EnergySummary<dim>
   EnergyHistory<dim>::compute(
-    const Particles::ParticleHandler<dim> &particle_handler) const
+    const Particles::ParticleHandler<dim> &particle_handler)
   {
     using Layout = MaterialPointLayout<dim>;
     EnergySummary<dim> summary;
+    Tensor<1, dim>     moment;
     for (const auto &particle : particle_handler)
       {
         const auto         properties = particle.get_properties();
@@ -61,6 +70,7 @@ namespace grainmpm
         const Tensor<1, dim> velocity = Layout::get_velocity(properties);
         summary.kinetic += 0.5 * mass * velocity.norm_square();
         summary.momentum += mass * velocity;
+        moment += mass * particle.get_location();
         summary.elastic +=
           properties[Layout::volume] *
           materials[grains[grain].material]->strain_energy_density(
@@ -69,6 +79,13 @@ namespace grainmpm
     summary.kinetic  = Utilities::MPI::sum(summary.kinetic, communicator);
     summary.elastic  = Utilities::MPI::sum(summary.elastic, communicator);
     summary.momentum = Utilities::MPI::sum(summary.momentum, communicator);
+    moment           = Utilities::MPI::sum(moment, communicator);
+    if (!have_initial_moment)
+      {
+        initial_moment      = moment;
+        have_initial_moment = true;
+      }
+    summary.gravity = -gravity * (moment - initial_moment);
     return summary;
   }
 
@@ -80,7 +97,9 @@ namespace grainmpm
                                 const double              time,
                                 const double              dt,
                                 const EnergySummary<dim> &summary,
-                                const StepStatistics     &statistics)
+                                const StepStatistics     &statistics,
+                                const EnergyLedger       &ledger,
+                                const EnergySummary<dim> &initial)
   {
     if (!file.is_open())
       return;
@@ -95,7 +114,10 @@ namespace grainmpm
          << statistics.residual_evaluations << ',' << std::setprecision(4)
          << statistics.residual_norm << ',' << statistics.rejected << ','
          << std::setprecision(12) << statistics.grid_energy_change << ','
-         << statistics.transfer_energy_change << '\n'
+         << statistics.transfer_energy_change << ',' << summary.gravity << ','
+         << ledger.plastic_work << ',' << ledger.friction_work << ','
+         << ledger.boundary_work << ',' << ledger.transfer << ','
+         << ledger.balance(summary, initial) << '\n'
          << std::flush;
   }
 

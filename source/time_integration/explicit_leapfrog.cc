@@ -38,14 +38,22 @@ namespace grainmpm
         // Eqs. (8)-(10): strain from the (contact-corrected) v^n, then the
         // forces of eq. (7) from sigma^{n+1/2}, V^{n+1/2}.
         statistics.n_contact_nodes += apply_constraints(velocities_old);
-        update_stresses(particle_handler, velocities_old, dt);
+        update_stresses(particle_handler,
+                        velocities_old,
+                        dt,
+                        statistics.plastic_work);
         compute_forces(particle_handler);
       }
     else
       compute_forces(particle_handler);
 
     integrate_grid_velocities(dt);
+    const VectorType unconstrained(velocities_new);
     statistics.n_contact_nodes += apply_constraints(velocities_new);
+    this->add_constraint_work(unconstrained,
+                              velocities_new,
+                              velocities_new,
+                              statistics);
     prescribe_rigid_velocities(velocities_new, time + dt);
 
     this->grid_to_particles(
@@ -56,7 +64,10 @@ namespace grainmpm
         remap_velocities(particle_handler);
         prescribe_rigid_velocities(velocities_old, time + dt);
         statistics.n_contact_nodes += apply_constraints(velocities_old);
-        update_stresses(particle_handler, velocities_old, dt);
+        update_stresses(particle_handler,
+                        velocities_old,
+                        dt,
+                        statistics.plastic_work);
       }
 
     this->finish_step(particle_handler, statistics);
@@ -70,7 +81,8 @@ namespace grainmpm
   ExplicitLeapfrog<dim>::update_stresses(
     Particles::ParticleHandler<dim> &particle_handler,
     const VectorType                &grid_velocities,
-    const double                     dt)
+    const double                     dt,
+    double                          &plastic_work)
   {
     using Layout = MaterialPointLayout<dim>;
     constexpr unsigned int per_particle =
@@ -103,14 +115,22 @@ namespace grainmpm
         increment *= dt;
 
         // Eq. (9) through the constitutive model; F and eq. (10) for V.
-        double plastic_strain = properties[Layout::plastic_strain];
+        const ConstitutiveModel<dim> &model =
+          *materials[grains[grain].material];
+        const double old_plastic_strain = properties[Layout::plastic_strain];
+        double       plastic_strain     = old_plastic_strain;
         const SymmetricTensor<2, 3> stress =
-          materials[grains[grain].material]->update_stress(
-            Layout::get_stress(properties), increment, plastic_strain);
-        this->store_particle_state(properties,
-                                   stress,
-                                   plastic_strain,
-                                   increment);
+          model.update_stress(Layout::get_stress(properties),
+                              increment,
+                              plastic_strain);
+        const double volume = this->store_particle_state(properties,
+                                                         stress,
+                                                         plastic_strain,
+                                                         increment);
+        plastic_work +=
+          volume *
+          model.plastic_work_density(stress,
+                                     plastic_strain - old_plastic_strain);
       });
   }
 

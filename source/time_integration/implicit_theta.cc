@@ -116,6 +116,10 @@ namespace grainmpm
       residual.project(unknowns, velocities_new, &node_in_contact);
     theta_velocities.reinit(unknowns, true);
     residual.theta_velocities(velocities_new, theta_velocities);
+    this->add_constraint_work(unknowns,
+                              velocities_new,
+                              theta_velocities,
+                              statistics);
 
     // Grid energies before and after (deformable slots).
     double kinetic_old = 0., kinetic_new = 0.;
@@ -135,7 +139,8 @@ namespace grainmpm
     double       strain_energy_new = 0.;
     commit_particle_state(particle_handler,
                           theta_velocities,
-                          strain_energy_new);
+                          strain_energy_new,
+                          statistics.plastic_work);
     grid_energies                 = {kinetic_old + strain_energy_old,
                                      kinetic_new + strain_energy_new};
     statistics.grid_energy_change = grid_energies.second - grid_energies.first;
@@ -155,7 +160,8 @@ namespace grainmpm
   ImplicitTheta<dim>::commit_particle_state(
     Particles::ParticleHandler<dim> &particle_handler,
     const VectorType                &theta_v,
-    double                          &strain_energy)
+    double                          &strain_energy,
+    double                          &plastic_work)
   {
     using Layout  = MaterialPointLayout<dim>;
     std::size_t p = 0;
@@ -164,20 +170,24 @@ namespace grainmpm
         const std::size_t index = p++;
         if (!residual.is_deformable(index))
           return;
-        auto                  properties = particle->get_properties();
+        auto         properties         = particle->get_properties();
+        const double old_plastic_strain = properties[Layout::plastic_strain];
         SymmetricTensor<2, 3> stress;
         double                plastic_strain;
         Tensor<2, dim>        increment;
         residual.particle_update(
           index, theta_v, stress, plastic_strain, increment);
-        const double       volume = this->store_particle_state(properties,
+        const double volume = this->store_particle_state(properties,
                                                          stress,
                                                          plastic_strain,
                                                          increment);
-        const unsigned int grain  = Layout::get_grain(properties);
-        strain_energy +=
+        const ConstitutiveModel<dim> &model =
+          *materials[grains[Layout::get_grain(properties)].material];
+        strain_energy += volume * model.strain_energy_density(stress);
+        plastic_work +=
           volume *
-          materials[grains[grain].material]->strain_energy_density(stress);
+          model.plastic_work_density(stress,
+                                     plastic_strain - old_plastic_strain);
       });
   }
 

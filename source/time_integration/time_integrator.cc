@@ -228,6 +228,45 @@ namespace grainmpm
 
   template <int dim>
   void
+  TimeIntegrator<dim>::add_constraint_work(const VectorType &before,
+                                           const VectorType &after,
+                                           const VectorType &rate,
+                                           StepStatistics   &statistics) const
+  {
+    // Total work of the reactions on the deformable slots, and the part
+    // that rigid partners put in: sum over a node's deformable slots of
+    // the reactions, times the rigid slot's velocity.
+    double total = 0., boundary = 0.;
+    for (unsigned int node = 0; node < layout.n_nodes(); ++node)
+      {
+        const unsigned int begin = layout.node_slots_begin(node);
+        const unsigned int end   = layout.node_slots_end(node);
+        Tensor<1, dim>     reaction;
+        int                rigid_slot = -1;
+        for (unsigned int s = begin; s < end; ++s)
+          {
+            if (field_is_rigid[layout.field(s)])
+              {
+                rigid_slot = static_cast<int>(s);
+                continue;
+              }
+            const Tensor<1, dim> impulse =
+              masses.local_element(s) * (get_slot_vector<dim>(after, s) -
+                                         get_slot_vector<dim>(before, s));
+            total += impulse * get_slot_vector<dim>(rate, s);
+            reaction += impulse;
+          }
+        if (rigid_slot >= 0)
+          boundary += reaction * get_slot_vector<dim>(rate, rigid_slot);
+      }
+    statistics.boundary_work += boundary;
+    statistics.friction_work += boundary - total;
+  }
+
+
+
+  template <int dim>
+  void
   TimeIntegrator<dim>::grid_to_particles(
     Particles::ParticleHandler<dim> &particle_handler,
     const VectorType                &position_velocities,

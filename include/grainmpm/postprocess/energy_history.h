@@ -30,13 +30,65 @@ namespace grainmpm
     double kinetic = 0.;
     /** sum_p V_p 1/2 sigma_p : C^{-1} : sigma_p. */
     double elastic = 0.;
+    /**
+     * Gravity potential relative to the start, -g . (sum_p m_p x_p -
+     * sum_p m_p x_p(0)).
+     */
+    double gravity = 0.;
     /** sum_p m_p v_p. */
     Tensor<1, dim> momentum;
 
+    /** Kinetic, elastic and gravity energy. */
     double
     total() const
     {
-      return kinetic + elastic;
+      return kinetic + elastic + gravity;
+    }
+  };
+
+  /**
+   * The energy ledger of a run: what left the deformable grains' kinetic,
+   * elastic and gravity energy, and where it went, summed from the start
+   * (StepStatistics of the accepted steps). The balance residual is what
+   * none of these accounts for: the time integrator's own gain or loss
+   * (the contact pass on v^n, the theta step, the hypoelastic energy
+   * measure), and particles removed through open faces.
+   */
+  struct EnergyLedger
+  {
+    /** Plastic work, >= 0. */
+    double plastic_work = 0.;
+    /** Work taken out by friction at contacts and walls, >= 0. */
+    double friction_work = 0.;
+    /** Work put in by rigid grains (and walls, which are at rest). */
+    double boundary_work = 0.;
+    /**
+     * Energy the grid-to-particle transfers added (FLIP: <= 0, the
+     * lumped-mass loss).
+     */
+    double transfer = 0.;
+
+    /** Add the step's entries. */
+    void
+    add(const StepStatistics &statistics)
+    {
+      plastic_work += statistics.plastic_work;
+      friction_work += statistics.friction_work;
+      boundary_work += statistics.boundary_work;
+      transfer += statistics.transfer_energy_change;
+    }
+
+    /**
+     * E(now) - E(0) + plastic + friction - boundary - transfer: zero for
+     * an exact balance.
+     */
+    template <int dim>
+    double
+    balance(const EnergySummary<dim> &now,
+            const EnergySummary<dim> &initial) const
+    {
+      return now.total() - initial.total() + plastic_work + friction_work -
+             boundary_work - transfer;
     }
   };
 
@@ -53,11 +105,15 @@ namespace grainmpm
       const std::string                                          &filename,
       const std::vector<GrainInfo<dim>>                          &grains,
       const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+      const Tensor<1, dim>                                       &gravity,
       const MPI_Comm                                              communicator);
 
-    /** The summary of the particles of @p particle_handler. */
+    /**
+     * The summary of the particles of @p particle_handler; the first call
+     * fixes the zero of the gravity potential.
+     */
     EnergySummary<dim>
-    compute(const Particles::ParticleHandler<dim> &particle_handler) const;
+    compute(const Particles::ParticleHandler<dim> &particle_handler);
 
     /** Append one row. */
     void
@@ -65,10 +121,16 @@ namespace grainmpm
               const double              time,
               const double              dt,
               const EnergySummary<dim> &summary,
-              const StepStatistics     &statistics);
+              const StepStatistics     &statistics,
+              const EnergyLedger       &ledger,
+              const EnergySummary<dim> &initial);
 
   private:
-    const std::vector<GrainInfo<dim>>                          &grains;
+    const Tensor<1, dim> gravity;
+    /** sum_p m_p x_p at the first compute(). */
+    Tensor<1, dim>                     initial_moment;
+    bool                               have_initial_moment = false;
+    const std::vector<GrainInfo<dim>> &grains;
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
     const MPI_Comm                                              communicator;
     std::ofstream                                               file;

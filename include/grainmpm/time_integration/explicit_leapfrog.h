@@ -45,12 +45,14 @@ namespace grainmpm
   private:
     /**
      * Strain increment dt grad v from @p grid_velocities, new stress,
-     * deformation gradient and volume of every deformable particle.
+     * deformation gradient and volume of every deformable particle; adds
+     * the plastic work to @p plastic_work.
      */
     void
     update_stresses(Particles::ParticleHandler<dim> &particle_handler,
                     const VectorType                &grid_velocities,
-                    const double                     dt);
+                    const double                     dt,
+                    double                          &plastic_work);
 
     /** Internal force -V sigma . grad S and gravity m g S per slot. */
     void

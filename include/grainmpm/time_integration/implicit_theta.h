@@ -92,11 +92,16 @@ namespace grainmpm
     double
     compute_velocity_scale() const;
 
-    /** Stress, history, F and volume of every deformable particle. */
+    /**
+     * Stress, history, F and volume of every deformable particle; adds the
+     * new elastic energy to @p strain_energy and the plastic work to
+     * @p plastic_work.
+     */
     void
     commit_particle_state(Particles::ParticleHandler<dim> &particle_handler,
                           const VectorType                &theta_velocities,
-                          double                          &strain_energy);
+                          double                          &strain_energy,
+                          double                          &plastic_work);
 
     using TimeIntegrator<dim>::parameters;
     using TimeIntegrator<dim>::grid;

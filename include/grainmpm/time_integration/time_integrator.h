@@ -70,6 +70,24 @@ namespace grainmpm
      * lumped-mass loss of Cummins & Brackbill, which the grid cannot see.
      */
     double transfer_energy_change = 0.;
+    /**
+     * Both schemes: the step's plastic work sum_p V_p sigma : de_p of the
+     * deformable particles (>= 0).
+     */
+    double plastic_work = 0.;
+    /**
+     * Both schemes: the work the contact, wall and rigid-grain constraints
+     * of the step do on the deformable grains, split into what rigid grains
+     * and walls put in (boundary_work: the reaction on the slots of a node
+     * times the velocity of its rigid partner; walls are at rest) and what
+     * friction takes out (friction_work >= 0 with Coulomb friction, 0 for
+     * frictionless constraints). The reaction on a slot is m_s times the
+     * change the constraints make to its end velocity; it works on the
+     * velocity that moves the particles (v^theta implicit, v^{n+1}
+     * explicit).
+     */
+    double friction_work = 0.;
+    double boundary_work = 0.;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
   };
@@ -168,6 +186,17 @@ namespace grainmpm
     /** v = p / m on slots with mass, zero elsewhere. */
     void
     velocities_from_momenta(VectorType &velocities) const;
+
+    /**
+     * Add the work of the constraints that changed @p before into
+     * @p after, on the velocities @p rate, to @p statistics
+     * (StepStatistics::friction_work and boundary_work).
+     */
+    void
+    add_constraint_work(const VectorType &before,
+                        const VectorType &after,
+                        const VectorType &rate,
+                        StepStatistics   &statistics) const;
 
     /** Set the slots of rigid fields to their prescribed velocity. */
     void

@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// The energy ledger of energy.csv (implicit theta = 1/2), from whole runs:
+// (a) a disk in free fall under gravity: kinetic energy gained = gravity
+//     potential lost, so the balance residual stays at round-off;
+// (b) the frictionless elastic two-disk collision (prm/two_disks_implicit
+//     .prm): no friction work, the transfers lose (the lumped-mass loss),
+//     and the balance residual at the end is below 1 % of E0;
+// (c) the same with Coulomb friction mu = 0.3, off-centre: friction work
+//     is positive (2.5e-3 E0); one step at separation gives back 2.5 % of
+//     it, where the frozen slip direction of a sliding slot no longer
+//     matches its final relative velocity, so steps may give back at most
+//     5 %; the balance at the end below 1 %;
+// (d) an elastic-plastic disk hitting a wall: the plastic work takes most
+//     of the energy, the balance at the end below 5 % of E0.
+// Every row is checked to satisfy balance = E - E0 + plastic + friction -
+// boundary - transfer.
+
+#include <grainmpm/simulator.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "../tests.h"
+
+#include "elastic_block.h"
+
+using namespace grainmpm;
+
+/** The columns of an energy.csv, by name without the unit. */
+std::map<std::string, std::vector<double>>
+read_energy(const std::string &directory)
+{
+  std::ifstream            file(directory + "/energy.csv");
+  std::string              line;
+  std::vector<std::string> names;
+  std::getline(file, line);
+  {
+    std::istringstream header(line);
+    std::string        name;
+    while (std::getline(header, name, ','))
+      names.push_back(name.substr(0, name.find(" [")));
+  }
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(file, line))
+    {
+      std::istringstream row(line);
+      std::string        value;
+      for (unsigned int c = 0; std::getline(row, value, ','); ++c)
+        columns[names[c]].push_back(std::stod(value));
+    }
+  return columns;
+}
+
+
+
+std::string
+yes_no(const bool condition)
+{
+  return condition ? "yes" : "no";
+}
+
+
+
+/** Run @p text as NAME.prm, return its energy.csv columns. */
+std::map<std::string, std::vector<double>>
+run_case(const std::string &name, const std::string &text)
+{
+  std::ofstream(name + ".prm")
+    << text << "\nsubsection Output\n  set Output directory = results-" << name
+    << "\n  set Test mode = true\n  set Write particles = false\n"
+    << "  set Write grid = false\nend\n";
+  grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
+  return read_energy("results-" + name);
+}
+
+
+
+/** Checks common to all cases; returns E0 (or the largest K + U). */
+double
+check_rows(const std::string                                &name,
+           const std::map<std::string, std::vector<double>> &c)
+{
+  const auto  &total = c.at("total_energy");
+  const double E0    = total[0];
+  double       scale = E0;
+  for (unsigned int k = 0; k < total.size(); ++k)
+    scale =
+      std::max(scale, c.at("kinetic_energy")[k] + c.at("elastic_energy")[k]);
+  double worst = 0.;
+  for (unsigned int k = 0; k < total.size(); ++k)
+    worst =
+      std::max(worst,
+               std::abs(c.at("balance_residual")[k] -
+                        (total[k] - E0 + c.at("plastic_work")[k] +
+                         c.at("friction_work")[k] - c.at("boundary_work")[k] -
+                         c.at("transfer_work")[k])));
+  deallog << name << ": " << total.size() - 1 << " steps" << std::endl;
+  deallog << "  balance column = E - E0 + plastic + friction - boundary "
+             "- transfer: "
+          << yes_no(worst <= 1e-9 * scale) << std::endl;
+  return scale;
+}
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+
+  const std::string implicit = R"(
+subsection Time stepping
+  set Scheme     = implicit theta
+  set Theta      = 0.5
+  set CFL number = 2.5
+end
+subsection Nonlinear solver
+  set Tolerance = 1e-8
+end
+)";
+
+  {
+    const auto c =
+      run_case("free_fall", unit_square_and_material(20) + implicit + R"(
+subsection Physics
+  set Gravity = 0, -10
+end
+subsection Grains
+  subsection Grain 1
+    set Shape    = disk
+    set Centre   = 0.5, 0.7
+    set Radius   = 0.2
+    set Material = elastic
+  end
+end
+subsection Time stepping
+  set End time  = 0.2
+  set Time step = 0.01
+end
+)");
+    const double scale     = check_rows("free fall", c);
+    const double potential = c.at("gravity_potential").back();
+    deallog << "  kinetic energy gained = gravity potential lost (1e-9): "
+            << yes_no(potential < 0. && std::abs(c.at("kinetic_energy").back() +
+                                                 potential) < 1e-9 * scale)
+            << std::endl;
+    double largest = 0.;
+    for (const double b : c.at("balance_residual"))
+      largest = std::max(largest, std::abs(b));
+    deallog << "  |balance residual| / E < 1e-9: "
+            << yes_no(largest < 1e-9 * scale) << std::endl;
+  }
+
+  const std::string disks = R"(
+subsection Materials
+  subsection elastic
+    set Density = 1000
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = disk
+    set Centre           = 0.2, 0.2
+    set Radius           = 0.2
+    set Material         = elastic
+    set Initial velocity = 0.1; 0.1
+  end
+  subsection Grain 2
+    set Shape            = disk
+    set Centre           = 0.8, GRAIN2Y
+    set Radius           = 0.2
+    set Material         = elastic
+    set Initial velocity = -0.1; -0.1
+  end
+end
+subsection Time stepping
+  set End time = 3.5
+end
+)";
+  for (const std::string friction : {"0", "0.3"})
+    {
+      std::string text = disks;
+      text.replace(text.find("GRAIN2Y"), 7, friction == "0" ? "0.8" : "0.74");
+      const auto c =
+        run_case(friction == "0" ? "disks" : "disks_friction",
+                 unit_square_and_material(20) + implicit + text +
+                   "subsection Contact\n  set Contact model = " +
+                   (friction == "0" ? std::string("frictionless") :
+                                      std::string("Coulomb friction")) +
+                   "\n  set Friction coefficient = " + friction + "\nend\n");
+      const double E0 = check_rows(friction == "0" ? "two disks, frictionless" :
+                                                     "two disks, mu = 0.3",
+                                   c);
+      const auto &work     = c.at("friction_work");
+      bool        monotone = true;
+      for (unsigned int k = 1; k < work.size(); ++k)
+        monotone =
+          monotone &&
+          (work[k] >= work[k - 1] - 0.05 * std::abs(work.back()) - 1e-12 * E0);
+      if (friction == "0")
+        deallog << "  no friction work: "
+                << yes_no(std::abs(work.back()) < 1e-12 * E0) << std::endl;
+      else
+        deallog << "  friction work positive, no step gives back more than 5 "
+                   "% of it: "
+                << yes_no(work.back() > 1e-4 * E0 && monotone) << std::endl;
+      deallog << "  transfers lose more than 5 % of E0: "
+              << yes_no(c.at("transfer_work").back() < -0.05 * E0) << std::endl;
+      deallog << "  |balance residual(end)| / E0 < 1 %: "
+              << yes_no(std::abs(c.at("balance_residual").back()) < 0.01 * E0)
+              << std::endl;
+    }
+
+  {
+    const auto c =
+      run_case("plastic", unit_square_and_material(50) + implicit + R"(
+subsection Materials
+  subsection elastic
+    set Constitutive model = von Mises
+    set Yield stress       = 20
+    set Hardening modulus  = 100
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = disk
+    set Centre           = 0.5, 0.5
+    set Radius           = 0.2
+    set Material         = elastic
+    set Initial velocity = 1.5; 0
+  end
+end
+subsection Contact
+  set Contact model = frictionless
+end
+subsection Time stepping
+  set End time = 0.3
+end
+)");
+    const double E0 = check_rows("elastic-plastic wall impact", c);
+    deallog << "  plastic work > 50 % of E0: "
+            << yes_no(c.at("plastic_work").back() > 0.5 * E0) << std::endl;
+    deallog << "  |balance residual(end)| / E0 < 5 %: "
+            << yes_no(std::abs(c.at("balance_residual").back()) < 0.05 * E0)
+            << std::endl;
+  }
+}
