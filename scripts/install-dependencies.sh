@@ -12,6 +12,11 @@ packages=(
   ccache
   numdiff
   clang-format-16
+  paraview           # ParaView 5.11: pvbatch for visualization/*.py
+  python3-paraview
+  xvfb               # xvfb-run: a virtual display for headless rendering
+  xauth
+  python3-matplotlib # visualization/plot_energy.py
 )
 
 missing=()

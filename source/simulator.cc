@@ -112,8 +112,21 @@ namespace grainmpm
                                                           grid,
                                                           grains,
                                                           materials);
-      output_writer =
-        std::make_unique<OutputWriter<dim>>(parameters.output, grid);
+      // Photoelastic fringe order per unit principal stress difference,
+      // per grain: thickness / material fringe value.
+      std::vector<double> fringe_factors;
+      for (const auto &grain : grains)
+        {
+          const MaterialParameters &material =
+            parameters.materials[grain.material];
+          fringe_factors.push_back(material.material_fringe_value > 0. ?
+                                     material.thickness /
+                                       material.material_fringe_value :
+                                     0.);
+        }
+      output_writer = std::make_unique<OutputWriter<dim>>(parameters.output,
+                                                          grid,
+                                                          fringe_factors);
       energy_history =
         std::make_unique<EnergyHistory<dim>>(parameters.output.directory +
                                                "/energy.csv",

@@ -54,7 +54,8 @@ namespace grainmpm
     {
     public:
       void
-      build(const Particles::ParticleHandler<dim> &particle_handler)
+      build(const Particles::ParticleHandler<dim> &particle_handler,
+            const std::vector<double>             &fringe_factors)
       {
         using Layout = MaterialPointLayout<dim>;
         names        = {"grain", "id"};
@@ -65,6 +66,7 @@ namespace grainmpm
         if (dim == 2)
           names.emplace_back("stress_zz");
         for (const char *name : {"principal_stress_difference",
+                                 "fringe_order",
                                  "von_mises_stress",
                                  "volume",
                                  "plastic_strain"})
@@ -102,7 +104,10 @@ namespace grainmpm
                 patch.data(c++, 0) = stress[a][b];
             if (dim == 2)
               patch.data(c++, 0) = stress[2][2];
-            patch.data(c++, 0) = principal_stress_difference<dim>(stress);
+            const double difference = principal_stress_difference<dim>(stress);
+            patch.data(c++, 0)      = difference;
+            patch.data(c++, 0) =
+              fringe_factors[Layout::get_grain(properties)] * difference;
             patch.data(c++, 0) = von_mises_stress(stress);
             patch.data(c++, 0) = properties[Layout::volume];
             patch.data(c++, 0) = properties[Layout::plastic_strain];
@@ -158,9 +163,11 @@ namespace grainmpm
 
   template <int dim>
   OutputWriter<dim>::OutputWriter(const OutputParameters    &parameters,
-                                  const BackgroundGrid<dim> &grid)
+                                  const BackgroundGrid<dim> &grid,
+                                  const std::vector<double> &fringe_factors)
     : parameters(parameters)
     , grid(grid)
+    , fringe_factors(fringe_factors)
     , vector_fe(FE_Q<dim>(1), dim)
     , vector_dof_handler(grid.get_triangulation())
   {
@@ -187,7 +194,7 @@ namespace grainmpm
     const unsigned int                     index)
   {
     ParticlePatches<dim> patches;
-    patches.build(particle_handler);
+    patches.build(particle_handler, fringe_factors);
     DataOutBase::VtkFlags flags;
     flags.time  = time;
     flags.cycle = index;

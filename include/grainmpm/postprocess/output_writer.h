@@ -38,18 +38,24 @@ namespace grainmpm
   /**
    * Writes the ParaView files of a run (DESIGN.md section 7):
    * `particles.pvd` with `particles/particles_NNNNN.vtu` (position, grain,
-   * velocity, stress tensor, principal stress difference, von Mises stress,
-   * volume, plastic strain) and `grid.pvd` with `grid/grid_NNNNN.vtu`
-   * (nodal mass, centre-of-mass velocity, number of grains, contact flag).
-   * The .pvd records are members, rewritten after every output, so a run
-   * that stops keeps a valid time series of what was written.
+   * velocity, stress tensor, principal stress difference, photoelastic
+   * fringe order, von Mises stress, volume, plastic strain) and `grid.pvd` with
+   * `grid/grid_NNNNN.vtu` (nodal mass, centre-of-mass velocity, number of
+   * grains, contact flag). The .pvd records are members, rewritten after every
+   * output, so a run that stops keeps a valid time series of what was written.
    */
   template <int dim>
   class OutputWriter
   {
   public:
+    /**
+     * @p fringe_factors holds, per grain, thickness / material fringe value
+     * of its material (0 if it is not photoelastic): the fringe order of a
+     * particle is that factor times its principal stress difference.
+     */
     OutputWriter(const OutputParameters    &parameters,
-                 const BackgroundGrid<dim> &grid);
+                 const BackgroundGrid<dim> &grid,
+                 const std::vector<double> &fringe_factors);
 
     /** Write the particles at @p time as output number @p index. */
     void
@@ -66,6 +72,7 @@ namespace grainmpm
   private:
     const OutputParameters                     &parameters;
     const BackgroundGrid<dim>                  &grid;
+    const std::vector<double>                   fringe_factors;
     FESystem<dim>                               vector_fe;
     DoFHandler<dim>                             vector_dof_handler;
     std::vector<std::pair<double, std::string>> particle_records;

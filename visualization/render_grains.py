@@ -1,0 +1,224 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Copyright (C) 2026 by the grainmpm authors
+"""Grain positions of a grainmpm run at chosen times, side by side (seed
+Fig. 1).
+
+Reads particles.pvd and draws every material point as a disk of its own
+size, coloured by its grain, one panel per requested time, all panels on
+the same scale (the box spanned by the particles over the chosen times).
+Several runs can be given (for example explicit and implicit): then there
+is one row of panels per run.
+
+  xvfb-run -a pvbatch visualization/render_grains.py \\
+      results-single_grain_rebound_explicit/particles.pvd \\
+      results-single_grain_rebound_implicit/particles.pvd \\
+      --times 0 2 --output grains.png
+"""
+
+import argparse
+import sys
+
+# Qualitative colours for grains 1, 2, ... (cycled).
+PALETTE = [
+    (0.122, 0.467, 0.706),
+    (1.000, 0.498, 0.055),
+    (0.173, 0.627, 0.173),
+    (0.839, 0.153, 0.157),
+    (0.580, 0.404, 0.741),
+    (0.549, 0.337, 0.294),
+    (0.890, 0.467, 0.761),
+    (0.498, 0.498, 0.498),
+    (0.737, 0.741, 0.133),
+    (0.090, 0.745, 0.812),
+]
+
+
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(
+        prog="render_grains.py",
+        description="Render the material points of one or several grainmpm "
+        "runs coloured by grain at chosen times, one panel per time and one "
+        "row per run, to PNG (run with 'xvfb-run -a pvbatch').",
+    )
+    parser.add_argument("pvd", nargs="+", help="particles.pvd of each run")
+    parser.add_argument(
+        "--times",
+        type=float,
+        nargs="+",
+        default=None,
+        help="output times (the nearest written ones); default: first and "
+        "last",
+    )
+    parser.add_argument("--output", default="grains.png", help="PNG file")
+    parser.add_argument(
+        "--labels",
+        nargs="+",
+        default=None,
+        help="a name per run, written on its panels (default: the run "
+        "directories)",
+    )
+    parser.add_argument(
+        "--panel-size",
+        type=int,
+        nargs=2,
+        default=[500, 500],
+        metavar=("WIDTH", "HEIGHT"),
+        help="pixels per panel (default 500 500)",
+    )
+    return parser.parse_args(argv)
+
+
+def main(argv):
+    arguments = parse_arguments(argv)
+
+    from paraview import servermanager
+    from paraview.simple import (
+        AssignViewToLayout,
+        CreateLayout,
+        CreateRenderView,
+        GetColorTransferFunction,
+        PVDReader,
+        SaveScreenshot,
+        Show,
+        Text,
+        UpdatePipeline,
+    )
+    import os
+
+    if arguments.labels is not None and len(arguments.labels) != len(
+        arguments.pvd
+    ):
+        sys.exit("render_grains.py: give one label per run")
+    labels = arguments.labels or [
+        os.path.basename(os.path.dirname(os.path.abspath(p))) for p in arguments.pvd
+    ]
+    readers = []
+    for pvd in arguments.pvd:
+        reader = PVDReader(FileName=pvd)
+        times = reader.TimestepValues
+        times = list(times) if isinstance(times, (list, tuple)) or hasattr(
+            times, "__len__") else [times]
+        if not times:
+            times = [0.0]
+        readers.append((reader, times))
+
+    # The panels: (run, time) pairs, and the common box.
+    panels = []
+    bounds = [float("inf"), -float("inf")] * 3
+    largest_grain = 1
+    spacing = 0.0
+    for reader, times in readers:
+        wanted = arguments.times or [times[0], times[-1]]
+        row = []
+        for t in wanted:
+            time = min(times, key=lambda s: abs(s - t))
+            UpdatePipeline(time=time, proxy=reader)
+            data = servermanager.Fetch(reader)
+            if data.GetNumberOfPoints() == 0:
+                sys.exit("render_grains.py: no particles at t = %g" % time)
+            b = data.GetBounds()
+            for k in range(3):
+                bounds[2 * k] = min(bounds[2 * k], b[2 * k])
+                bounds[2 * k + 1] = max(bounds[2 * k + 1], b[2 * k + 1])
+            grains = data.GetPointData().GetArray("grain")
+            largest_grain = max(largest_grain, int(grains.GetRange()[1]))
+            volumes = data.GetPointData().GetArray("volume")
+            n = data.GetNumberOfPoints()
+            sizes = sorted(volumes.GetValue(i) for i in range(n))
+            three_d = b[5] - b[4] > 0.0
+            spacing = max(
+                spacing, sizes[n // 2] ** (1.0 / 3.0 if three_d else 0.5)
+            )
+            row.append(time)
+        panels.append(row)
+
+    lut = GetColorTransferFunction("grain")
+    lut.InterpretValuesAsCategories = 1
+    annotations, colours = [], []
+    for g in range(1, largest_grain + 1):
+        annotations += [str(g), "grain %d" % g]
+        colours += list(PALETTE[(g - 1) % len(PALETTE)])
+    lut.Annotations = annotations
+    lut.IndexedColors = colours
+
+    width = bounds[1] - bounds[0] + 2.0 * spacing
+    height = bounds[3] - bounds[2] + 2.0 * spacing
+    centre = [
+        0.5 * (bounds[0] + bounds[1]),
+        0.5 * (bounds[2] + bounds[3]),
+        0.5 * (bounds[4] + bounds[5]),
+    ]
+    aspect = float(arguments.panel_size[0]) / arguments.panel_size[1]
+
+    layout = CreateLayout("grains")
+    n_rows, n_columns = len(panels), len(panels[0])
+    views = []
+    for r, ((reader, _), row) in enumerate(zip(readers, panels)):
+        for c, time in enumerate(row):
+            view = CreateRenderView()
+            view.OrientationAxesVisibility = 0
+            view.Background = [1.0, 1.0, 1.0]
+            try:
+                view.UseColorPaletteForBackground = 0
+            except AttributeError:
+                pass
+            view.CameraParallelProjection = 1
+            view.ViewTime = time
+            display = Show(reader, view)
+            display.SetRepresentationType("Point Gaussian")
+            display.ShaderPreset = "Plain circle"
+            display.GaussianRadius = 0.75 * spacing
+            display.ColorArrayName = ["POINTS", "grain"]
+            display.LookupTable = lut
+            display.SetScalarBarVisibility(view, False)
+            view.CameraFocalPoint = centre
+            view.CameraPosition = [
+                centre[0],
+                centre[1],
+                bounds[5] + 10.0 * max(width, height),
+            ]
+            view.CameraViewUp = [0.0, 1.0, 0.0]
+            view.CameraParallelScale = 0.56 * max(height, width / aspect)
+            caption = Text(Text="%s, t = %g" % (labels[r], time))
+            caption_display = Show(caption, view)
+            caption_display.WindowLocation = "Upper Left Corner"
+            caption_display.FontSize = 14
+            caption_display.Color = [0.0, 0.0, 0.0]
+            views.append((r, c, view))
+
+    # Split the layout into a grid of n_rows x n_columns cells.
+    # (Split returns the first child's index; the second is the next.)
+    def split(cell, count, direction):
+        cells = [cell]
+        for k in range(count - 1):
+            fraction = 1.0 / (count - k)
+            if direction == "v":
+                first = layout.SplitVertical(cells[-1], fraction)
+            else:
+                first = layout.SplitHorizontal(cells[-1], fraction)
+            cells[-1] = first
+            cells.append(first + 1)
+        return cells
+
+    rows = split(0, n_rows, "v")
+    for r, row_cell in enumerate(rows):
+        columns = split(row_cell, n_columns, "h")
+        for c, cell in enumerate(columns):
+            view = [v for (rr, cc, v) in views if rr == r and cc == c][0]
+            AssignViewToLayout(view=view, layout=layout, hint=cell)
+
+    size = [arguments.panel_size[0] * n_columns, arguments.panel_size[1] * n_rows]
+    layout.SetSize(size[0], size[1])
+    SaveScreenshot(arguments.output, layout, ImageResolution=size)
+    print(
+        "render_grains.py: %d run(s) at t = %s -> %s"
+        % (
+            len(panels),
+            ", ".join("%g" % t for t in panels[0]),
+            arguments.output,
+        )
+    )
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
