@@ -27,20 +27,11 @@ namespace grainmpm
                           const double              yield_stress,
                           const double              hardening_modulus,
                           const TwoDimensionalModel model)
-    : mass_density(density)
-    , youngs_modulus(youngs_modulus)
-    , poissons_ratio(poissons_ratio)
+    : LinearElastic<dim>(density, youngs_modulus, poissons_ratio, model)
     , yield_stress(yield_stress)
     , hardening_modulus(hardening_modulus)
-    , plane_stress(dim == 2 && model == TwoDimensionalModel::plane_stress)
-    , lambda(youngs_modulus * poissons_ratio /
-             ((1. + poissons_ratio) * (1. - 2. * poissons_ratio)))
-    , mu(youngs_modulus / (2. * (1. + poissons_ratio)))
-    , dilatational_wave_speed(
-        plane_stress ?
-          std::sqrt(youngs_modulus /
-                    (density * (1. - poissons_ratio * poissons_ratio))) :
-          std::sqrt((lambda + 2. * mu) / density))
+    , lambda_3d(youngs_modulus * poissons_ratio /
+                ((1. + poissons_ratio) * (1. - 2. * poissons_ratio)))
   {}
 
 
@@ -54,7 +45,7 @@ namespace grainmpm
                                double                      &tangent_zzzz) const
   {
     const SymmetricTensor<2, 3> trial =
-      rotated + lambda * trace(strain) * unit_symmetric_tensor<3>() +
+      rotated + lambda_3d * trace(strain) * unit_symmetric_tensor<3>() +
       2. * mu * strain;
     const SymmetricTensor<2, 3> s_trial = deviator(trial);
     const double                q_trial = std::sqrt(1.5 * (s_trial * s_trial));
@@ -63,12 +54,12 @@ namespace grainmpm
     if (!(f_trial > 0.))
       {
         plastic_increment = 0.;
-        tangent_zzzz      = lambda + 2. * mu;
+        tangent_zzzz      = lambda_3d + 2. * mu;
         return trial;
       }
     plastic_increment  = f_trial / (3. * mu + hardening_modulus);
     const double beta  = 1. - 3. * mu * plastic_increment / q_trial;
-    const double kappa = lambda + 2. * mu / 3.;
+    const double kappa = lambda_3d + 2. * mu / 3.;
     // The consistent tangent (physics.md 6.3), its zz-zz component, with
     // N = s / |s| (unit Frobenius norm).
     const double n_zz = s_trial[2][2] / s_trial.norm();
@@ -106,7 +97,7 @@ namespace grainmpm
       symmetrize(old + spin * old - old * spin);
 
     double                plastic_increment = 0.;
-    double                tangent_zzzz      = lambda + 2. * mu;
+    double                tangent_zzzz      = lambda_3d + 2. * mu;
     SymmetricTensor<2, 3> new_stress;
     if (!plane_stress)
       new_stress = radial_return(
@@ -118,7 +109,7 @@ namespace grainmpm
         const double scale = std::abs(yield_stress) + rotated.norm() +
                              youngs_modulus * strain.norm();
         strain[2][2] =
-          -(rotated[2][2] + lambda * trace(strain)) / (lambda + 2. * mu);
+          -(rotated[2][2] + lambda_3d * trace(strain)) / (lambda_3d + 2. * mu);
         for (unsigned int iteration = 0;; ++iteration)
           {
             new_stress = radial_return(
@@ -140,43 +131,12 @@ namespace grainmpm
 
   template <int dim>
   double
-  VonMises<dim>::strain_energy_density(
-    const SymmetricTensor<2, 3> &stress) const
-  {
-    // The elastic part.
-    return isotropic_strain_energy_density(stress,
-                                           youngs_modulus,
-                                           poissons_ratio);
-  }
-
-
-
-  template <int dim>
-  double
   VonMises<dim>::plastic_work_density(
     const SymmetricTensor<2, 3> &new_stress,
     const double                 plastic_strain_increment) const
   {
     // sigma : de_p with de_p = 3/2 d epsilon_p s / q: q d epsilon_p.
     return equivalent_stress(new_stress) * plastic_strain_increment;
-  }
-
-
-
-  template <int dim>
-  double
-  VonMises<dim>::wave_speed() const
-  {
-    return dilatational_wave_speed;
-  }
-
-
-
-  template <int dim>
-  double
-  VonMises<dim>::density() const
-  {
-    return mass_density;
   }
 
 

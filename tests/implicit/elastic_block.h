@@ -68,4 +68,40 @@ end
 constexpr double block_lambda = 1000. * 0.3 / (1.3 * 0.4);
 constexpr double block_mu     = 1000. / 2.6;
 
+/**
+ * The two disks of prm/two_disks_implicit.prm (reference/physics.md V3):
+ * rho = 1000 and the two grains, the second centred at (0.8,
+ * @p grain_2_y) (0.8: head-on), approaching at (0.1, 0.1) each.
+ */
+inline std::string
+two_disks_parameters(const std::string &grain_2_y = "0.8")
+{
+  return R"(
+subsection Materials
+  subsection elastic
+    set Density = 1000
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = disk
+    set Centre           = 0.2, 0.2
+    set Radius           = 0.2
+    set Material         = elastic
+    set Initial velocity = 0.1; 0.1
+  end
+  subsection Grain 2
+    set Shape            = disk
+    set Centre           = 0.8, )" +
+         grain_2_y + R"(
+    set Radius           = 0.2
+    set Material         = elastic
+    set Initial velocity = -0.1; -0.1
+  end
+end
+)";
+}
+
+
+
 #endif

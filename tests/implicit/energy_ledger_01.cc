@@ -159,35 +159,14 @@ end
   }
 
   const std::string disks = R"(
-subsection Materials
-  subsection elastic
-    set Density = 1000
-  end
-end
-subsection Grains
-  subsection Grain 1
-    set Shape            = disk
-    set Centre           = 0.2, 0.2
-    set Radius           = 0.2
-    set Material         = elastic
-    set Initial velocity = 0.1; 0.1
-  end
-  subsection Grain 2
-    set Shape            = disk
-    set Centre           = 0.8, GRAIN2Y
-    set Radius           = 0.2
-    set Material         = elastic
-    set Initial velocity = -0.1; -0.1
-  end
-end
 subsection Time stepping
   set End time = 3.5
 end
 )";
   for (const std::string friction : {"0", "0.3"})
     {
-      std::string text = disks;
-      text.replace(text.find("GRAIN2Y"), 7, friction == "0" ? "0.8" : "0.74");
+      const std::string text =
+        two_disks_parameters(friction == "0" ? "0.8" : "0.74") + disks;
       const auto c =
         run_case(friction == "0" ? "disks" : "disks_friction",
                  unit_square_and_material(20) + implicit + text +

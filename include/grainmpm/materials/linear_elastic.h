@@ -39,7 +39,7 @@ namespace grainmpm
     double
     density() const override;
 
-  private:
+  protected:
     const double mass_density;
     const double youngs_modulus;
     const double poissons_ratio;

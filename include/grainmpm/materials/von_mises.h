@@ -4,7 +4,7 @@
 #ifndef grainmpm_materials_von_mises_h
 #define grainmpm_materials_von_mises_h
 
-#include <grainmpm/materials/constitutive_model.h>
+#include <grainmpm/materials/linear_elastic.h>
 
 namespace grainmpm
 {
@@ -33,10 +33,11 @@ namespace grainmpm
    * LinearElastic.
    *
    * update_stress() is a pure function of its arguments, as the implicit
-   * residual requires.
+   * residual requires. Elastic energy, density and wave speed are those of
+   * the LinearElastic base.
    */
   template <int dim>
-  class VonMises : public ConstitutiveModel<dim>
+  class VonMises : public LinearElastic<dim>
   {
   public:
     /**
@@ -55,15 +56,6 @@ namespace grainmpm
     update_stress(const SymmetricTensor<2, 3> &stress,
                   const Tensor<2, dim>        &displacement_gradient_increment,
                   double                      &plastic_strain) const override;
-
-    double
-    strain_energy_density(const SymmetricTensor<2, 3> &stress) const override;
-
-    double
-    wave_speed() const override;
-
-    double
-    density() const override;
 
     bool
     has_history() const override;
@@ -85,15 +77,14 @@ namespace grainmpm
                   double                      &plastic_increment,
                   double                      &tangent_zzzz) const;
 
-    const double mass_density;
-    const double youngs_modulus;
-    const double poissons_ratio;
+    using LinearElastic<dim>::mu;
+    using LinearElastic<dim>::plane_stress;
+    using LinearElastic<dim>::youngs_modulus;
+
     const double yield_stress;
     const double hardening_modulus;
-    const bool   plane_stress;
-    const double lambda;
-    const double mu;
-    const double dilatational_wave_speed;
+    /** Lame's first parameter in 3D (not reduced for plane stress). */
+    const double lambda_3d;
   };
 } // namespace grainmpm
 
