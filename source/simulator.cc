@@ -3,6 +3,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/particles/random_packing.h>
 #include <grainmpm/simulator.h>
 
 #include <deal.II/base/discrete_time.h>
@@ -48,6 +49,16 @@ namespace grainmpm
           std::filesystem::copy_options::overwrite_existing);
         std::ofstream used(directory + "/parameters.prm");
         prm.print_parameters(used, ParameterHandler::PRM);
+        if (parameters.n_packed_grains > 0)
+          {
+            // The generated grains, to be read back as a Grain list file.
+            std::ofstream packing(directory + "/packing.csv");
+            write_grain_list<dim>(
+              packing,
+              std::vector<GrainParameters<dim>>(parameters.grains.end() -
+                                                  parameters.n_packed_grains,
+                                                parameters.grains.end()));
+          }
       }
 
     for (const auto &material : parameters.materials)

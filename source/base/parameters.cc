@@ -3,6 +3,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/random_packing.h>
 
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
@@ -292,6 +293,103 @@ namespace grainmpm
                        "must be positive for the 'von Mises' model, but is " +
                          std::to_string(yield_stress) + ".");
   }
+
+
+
+  // ------------------------------------------------------ random packing
+
+  template <int dim>
+  void
+  RandomPackingParameters<dim>::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Random packing");
+    prm.add_parameter(
+      "Number of grains",
+      n_grains,
+      "Number of disks (2D) or spheres (3D) to generate by ballistic "
+      "deposition into the box between Lower corner and Upper corner "
+      "(dropped along -y at random lateral positions, each placed where it "
+      "comes to rest lowest among Drop attempts tries, touching the floor "
+      "or a grain), in addition to the described "
+      "grains. 0: none. The run writes them to packing.csv in the output "
+      "directory, a grain list file for 'Grains/Grain list file'. "
+      "Dimensionless.",
+      Patterns::Integer(0));
+    prm.add_parameter("Minimum radius",
+                      minimum_radius,
+                      "Smallest grain radius; radii are uniform between "
+                      "the minimum and the maximum. Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Maximum radius",
+                      maximum_radius,
+                      "Largest grain radius. Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Gap",
+                      gap,
+                      "Clearance between deposited grains as a fraction of "
+                      "the sum of their radii, so that no two grains share "
+                      "a material point at the start. Dimensionless.",
+                      Patterns::Double(0., 1.));
+    prm.add_parameter("Lower corner",
+                      lower_corner,
+                      "Corner of the deposition box with the smallest "
+                      "coordinates; its y coordinate is the floor. Units: "
+                      "length.");
+    prm.add_parameter("Upper corner",
+                      upper_corner,
+                      "Corner of the deposition box with the largest "
+                      "coordinates. Units: length.");
+    prm.add_parameter("Material",
+                      material,
+                      "Name of the material (a subsection of Materials) of "
+                      "the generated grains.");
+    prm.add_parameter("Drop attempts",
+                      n_candidates,
+                      "Each grain is dropped at this many random lateral "
+                      "positions and placed where it comes to rest lowest; "
+                      "more attempts fill holes and give denser packings "
+                      "(1: plain ballistic deposition). Dimensionless.",
+                      Patterns::Integer(1));
+    prm.add_parameter("Seed",
+                      seed,
+                      "Seed of the random numbers (std::mt19937): the same "
+                      "seed gives the same packing. Dimensionless.",
+                      Patterns::Integer(0));
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  void
+  RandomPackingParameters<dim>::check(
+    const BackgroundGridParameters<dim> &grid) const
+  {
+    if (!(maximum_radius >= minimum_radius) || !(minimum_radius > 0.))
+      throw InputError("Random packing/Maximum radius",
+                       "the radii must satisfy 0 < Minimum radius <= "
+                       "Maximum radius.");
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        if (!(upper_corner[d] - lower_corner[d] > 2. * maximum_radius))
+          throw InputError("Random packing/Upper corner",
+                           "the box must be wider than the largest grain "
+                           "in every direction.");
+        if (lower_corner[d] < grid.lower_corner[d] ||
+            upper_corner[d] > grid.upper_corner[d])
+          throw InputError("Random packing/Lower corner",
+                           "the deposition box must lie inside the "
+                           "background grid.");
+      }
+    if (material.empty())
+      throw InputError("Random packing/Material",
+                       "name the material of the generated grains.");
+  }
+
+
+
+  template struct RandomPackingParameters<2>;
+  template struct RandomPackingParameters<3>;
 
 
 
@@ -979,6 +1077,8 @@ namespace grainmpm
       }
     prm.leave_subsection();
 
+    random_packing.declare(prm);
+
     prm.enter_subsection("Material points");
     prm.add_parameter("Particles per cell",
                       particles_per_cell,
@@ -1069,10 +1169,19 @@ namespace grainmpm
           }
       }
 
+    // Then the grains of the random packing.
+    if (random_packing.n_grains > 0)
+      {
+        random_packing.check(grid);
+        const auto packed = grainmpm::random_packing(random_packing);
+        grains.insert(grains.end(), packed.begin(), packed.end());
+        n_packed_grains = packed.size();
+      }
+
     if (grains.empty())
       throw InputError("Grains",
-                       "no grain is described: add a subsection 'Grain 1' "
-                       "or a Grain list file.");
+                       "no grain is described: add a subsection 'Grain 1', "
+                       "a Grain list file or a Random packing.");
 
     for (auto &grain : grains)
       {

@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_particles_random_packing_h
+#define grainmpm_particles_random_packing_h
+
+#include <grainmpm/base/parameters.h>
+
+#include <ostream>
+#include <vector>
+
+namespace grainmpm
+{
+  /**
+   * A random dense packing of polydisperse disks (2D) or spheres (3D) in a
+   * box, by ballistic deposition: the grains, with radii drawn uniformly
+   * from [Minimum radius, Maximum radius], are dropped one after the other
+   * at uniformly random lateral positions and stop where they first touch
+   * the floor of the box or a grain below (the vertical is the y
+   * direction; gravity, if any, should point to -y). Each grain is dropped
+   * at Drop attempts positions and kept at the lowest resting place, which
+   * fills holes. Neighbours are found through columns of width
+   * 2 Maximum radius, so the cost is linear in the number of grains. The
+   * run itself then settles the grains.
+   *
+   * The random numbers come from std::mt19937 with the given seed,
+   * converted to doubles by hand, so a seed gives the same packing on every
+   * platform.
+   *
+   * Throws InputError naming 'Random packing/Upper corner' when a grain
+   * does not fit below the top of the box.
+   */
+  template <int dim>
+  std::vector<GrainParameters<dim>>
+  random_packing(const RandomPackingParameters<dim> &parameters);
+
+  /**
+   * Write @p grains as a grain list CSV (the format of 'Grains/Grain list
+   * file'), with a header comment.
+   */
+  template <int dim>
+  void
+  write_grain_list(std::ostream                            &out,
+                   const std::vector<GrainParameters<dim>> &grains);
+} // namespace grainmpm
+
+#endif
