@@ -8,6 +8,13 @@
 
 #include <deal.II/base/discrete_time.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -109,10 +116,37 @@ namespace grainmpm
   void
   Simulator<dim>::advance_to_end_time()
   {
+    // A resumed run reads its state first: the histories continue from the
+    // lengths they had at the checkpoint.
+    const std::string &resume        = parameters.checkpoint.resume_from;
+    std::uintmax_t     energy_length = 0, grains_length = 0;
+    std::ifstream      resume_stream;
+    std::unique_ptr<boost::archive::binary_iarchive> resume_archive;
+    if (!resume.empty())
+      {
+        resume_stream.open(resume + "/state", std::ios::binary);
+        if (!resume_stream)
+          throw InputError("Checkpoint/Resume from = " + resume,
+                           "there is no checkpoint (file state) in this "
+                           "directory.");
+        resume_archive =
+          std::make_unique<boost::archive::binary_iarchive>(resume_stream);
+        *resume_archive >> energy_length >> grains_length;
+      }
+
     {
       TimerOutput::Scope  scope(timer, "setup");
       GrainGenerator<dim> generator(parameters);
       grains = generator.generate(grid, particle_handler);
+      if (!resume.empty())
+        {
+          // The material points of the checkpoint replace the new ones,
+          // before anything else looks at the grid.
+          particle_handler.clear();
+          grid.load(resume + "/grid");
+          particle_handler.deserialize();
+        }
+
       if (parameters.time_stepping.scheme == TimeSteppingScheme::implicit_theta)
         stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
                                                        grid,
@@ -144,13 +178,20 @@ namespace grainmpm
                                              grains,
                                              materials,
                                              parameters.physics.gravity,
-                                             communicator);
+                                             communicator,
+                                             energy_length);
       grain_history =
         std::make_unique<GrainHistory<dim>>(parameters.output.directory +
                                               "/grains.csv",
                                             grains.size(),
-                                            communicator);
+                                            communicator,
+                                            grains_length);
     }
+    if (resume_archive != nullptr)
+      {
+        serialize_state(*resume_archive);
+        *resume_archive >> *energy_history >> *output_writer;
+      }
     pcout << "grainmpm: " << dim << "D, "
           << grid.get_triangulation().n_global_active_cells() << " cells, "
           << grains.size() << " grains, "
@@ -177,31 +218,53 @@ namespace grainmpm
       Utilities::MPI::sum(initial_momentum_scale, communicator);
     max_speed = Utilities::MPI::max(max_speed, communicator);
 
-    initial_energy = current_energy = energy_history->compute(particle_handler);
-    minimum_energy = maximum_energy = initial_energy.total();
-    largest_kinetic_elastic = initial_energy.kinetic + initial_energy.elastic;
-    energy_history->write_row(
-      0, 0., 0., initial_energy, StepStatistics(), ledger, initial_energy);
-    write_output(0, 0., 0.);
-
     const double end_time        = parameters.time_stepping.end_time;
     const double output_interval = parameters.output.interval;
-    double       next_output     = output_interval;
     const bool   implicit =
       parameters.time_stepping.scheme == TimeSteppingScheme::implicit_theta;
-    DiscreteTime time(0., end_time, compute_time_step(max_speed));
-    const double minimum_time_step =
-      parameters.time_stepping.minimum_time_step > 0. ?
-        parameters.time_stepping.minimum_time_step :
-        time.get_next_step_size() / 1024.;
-    // The failure policy of DESIGN.md section 5: the step cut after failed
-    // solves (0: none), and the easy steps since the last cut.
-    double       step_limit      = 0.;
-    unsigned int easy_steps      = 0;
-    unsigned int n_contact_steps = 0;
+    if (resume.empty())
+      {
+        initial_energy = current_energy =
+          energy_history->compute(particle_handler);
+        minimum_energy = maximum_energy = initial_energy.total();
+        largest_kinetic_elastic =
+          initial_energy.kinetic + initial_energy.elastic;
+        energy_history->write_row(
+          0, 0., 0., initial_energy, StepStatistics(), ledger, initial_energy);
+        write_output(0, 0., 0.);
+        next_output       = output_interval;
+        start_time        = 0.;
+        next_step_size    = compute_time_step(max_speed);
+        minimum_time_step = parameters.time_stepping.minimum_time_step > 0. ?
+                              parameters.time_stepping.minimum_time_step :
+                              next_step_size / 1024.;
+      }
+    else
+      pcout << "resumed from " << resume << " at step " << step_offset
+            << ", t = " << start_time << std::endl;
+    DiscreteTime time(start_time, end_time, next_step_size);
+    last_checkpoint = std::chrono::steady_clock::now();
+    // Checkpoints already in the output directory count towards the ones
+    // kept (a resumed run continues the list of the run it resumes).
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        for (const auto &entry :
+             std::filesystem::directory_iterator(parameters.output.directory))
+          {
+            const std::string name = entry.path().filename().string();
+            if (entry.is_directory() && name.rfind("checkpoint-", 0) == 0 &&
+                name.find(".tmp") == std::string::npos)
+              checkpoints.push_back(entry.path().string());
+          }
+        std::sort(checkpoints.begin(), checkpoints.end());
+      }
+    // The step number of the whole run (a resumed DiscreteTime counts from
+    // the checkpoint).
+    const auto step_number = [&time, this]() {
+      return step_offset + time.get_step_number();
+    };
     while (!time.is_at_end() &&
-           time.get_step_number() <
-             parameters.time_stepping.maximum_number_of_steps)
+           step_number() < parameters.time_stepping.maximum_number_of_steps)
       {
         StepStatistics statistics;
         unsigned int   rejected_attempts = 0;
@@ -224,14 +287,14 @@ namespace grainmpm
             ++rejected_attempts;
             ++implicit_totals.rejected;
             const double failed_step = time.get_next_step_size();
-            pcout << "  step " << time.get_step_number() + 1
+            pcout << "  step " << step_number() + 1
                   << " at t = " << time.get_current_time()
                   << " rejected with dt = " << failed_step << ": "
                   << statistics.failure << std::endl;
             if (!parameters.time_stepping.adaptive_time_stepping ||
                 0.5 * failed_step < minimum_time_step)
               {
-                write_output(time.get_step_number(),
+                write_output(step_number(),
                              time.get_current_time(),
                              time.get_previous_step_size());
                 std::ostringstream message;
@@ -292,7 +355,7 @@ namespace grainmpm
         {
           TimerOutput::Scope scope(timer, "diagnostics");
           current_energy = energy_history->compute(particle_handler);
-          energy_history->write_row(time.get_step_number(),
+          energy_history->write_row(step_number(),
                                     time.get_current_time(),
                                     time.get_previous_step_size(),
                                     current_energy,
@@ -318,7 +381,7 @@ namespace grainmpm
         if (time.get_current_time() >= next_output * (1. - 1e-12) ||
             time.is_at_end())
           {
-            write_output(time.get_step_number(),
+            write_output(step_number(),
                          time.get_current_time(),
                          time.get_previous_step_size());
             while (next_output <= time.get_current_time() * (1. + 1e-12))
@@ -334,6 +397,27 @@ namespace grainmpm
             else
               step_limit = 0.;
             time.set_desired_next_step_size(next_step);
+          }
+
+        // Checkpoint by steps or wall-clock time.
+        const auto &checkpoint = parameters.checkpoint;
+        if (!time.is_at_end() &&
+            ((checkpoint.steps_between > 0 &&
+              step_number() % checkpoint.steps_between == 0) ||
+             (checkpoint.minutes_between > 0. &&
+              std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            last_checkpoint)
+                  .count() >= 60. * checkpoint.minutes_between)))
+          {
+            TimerOutput::Scope scope(timer, "checkpoint");
+            // The state is that of a run starting here.
+            const unsigned int offset = step_offset;
+            start_time                = time.get_current_time();
+            next_step_size            = time.get_next_step_size();
+            step_offset               = step_number();
+            write_checkpoint();
+            step_offset     = offset;
+            last_checkpoint = std::chrono::steady_clock::now();
           }
       }
 
@@ -351,7 +435,7 @@ namespace grainmpm
         particle.get_properties()[MaterialPointLayout<dim>::plastic_strain]);
     largest_plastic_strain =
       Utilities::MPI::max(largest_plastic_strain, communicator);
-    pcout << "\nfinished: " << time.get_step_number()
+    pcout << "\nfinished: " << step_number()
           << " steps to t = " << time.get_current_time() << "\n"
           << "  steps with contact:       " << n_contact_steps << "\n"
           << "  particles removed:        " << n_removed << "\n"
@@ -379,7 +463,7 @@ namespace grainmpm
       {
         pcout << "  energy change by the grid step / " << scale << " = "
               << grid_energy_change / reference << "\n";
-        const double steps = std::max(1U, time.get_step_number());
+        const double steps = std::max(1U, step_number());
         pcout << "  Newton iterations per step (mean, max): "
               << implicit_totals.newton_iterations / steps << ", "
               << implicit_totals.max_newton_iterations << "\n"
@@ -426,6 +510,77 @@ namespace grainmpm
     parameters.parse(filename, prm);
     Simulator<dim> simulator(parameters, prm, filename, communicator);
     simulator.run();
+  }
+
+
+
+  template <int dim>
+  template <class Archive>
+  void
+  Simulator<dim>::serialize_state(Archive &archive)
+  {
+    archive &start_time &next_step_size &step_offset &next_output &step_limit;
+    archive &easy_steps &n_contact_steps          &minimum_time_step;
+    archive &n_outputs &n_removed &initial_energy &current_energy;
+    archive &minimum_energy &maximum_energy &grid_energy_change &ledger;
+    archive &largest_balance &largest_kinetic_elastic &initial_momentum_scale;
+    archive &implicit_totals.newton_iterations &implicit_totals
+      .linear_iterations &implicit_totals.residual_evaluations &implicit_totals
+      .status_changes &implicit_totals.max_newton_iterations &implicit_totals
+      .rejected &implicit_totals.smallest_step;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_checkpoint()
+  {
+    // Everything goes to a temporary directory, which is renamed when
+    // complete: a run killed meanwhile leaves the older checkpoints intact.
+    const std::string  directory = parameters.output.directory;
+    std::ostringstream name;
+    name << directory << "/checkpoint-" << std::setw(6) << std::setfill('0')
+         << step_offset;
+    const std::string final_name     = name.str();
+    const std::string temporary_name = final_name + ".tmp";
+    const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    if (root)
+      {
+        std::filesystem::remove_all(temporary_name);
+        std::filesystem::create_directories(temporary_name);
+      }
+    MPI_Barrier(communicator);
+
+    particle_handler.prepare_for_serialization();
+    grid.get_triangulation().save(temporary_name + "/grid");
+    if (root)
+      {
+        std::ofstream out(temporary_name + "/state", std::ios::binary);
+        boost::archive::binary_oarchive archive(out);
+        std::uintmax_t energy_length = energy_history->length();
+        std::uintmax_t grains_length =
+          grain_history != nullptr ? grain_history->length() : 0;
+        archive << energy_length << grains_length;
+        serialize_state(archive);
+        archive << *energy_history << *output_writer;
+      }
+    MPI_Barrier(communicator);
+    if (root)
+      {
+        std::filesystem::remove_all(final_name);
+        std::filesystem::rename(temporary_name, final_name);
+        checkpoints.erase(std::remove(checkpoints.begin(),
+                                      checkpoints.end(),
+                                      final_name),
+                          checkpoints.end());
+        checkpoints.push_back(final_name);
+        while (checkpoints.size() > parameters.checkpoint.n_kept)
+          {
+            std::filesystem::remove_all(checkpoints.front());
+            checkpoints.erase(checkpoints.begin());
+          }
+      }
   }
 
 

@@ -19,6 +19,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <chrono>
 #include <limits>
 #include <memory>
 #include <string>
@@ -64,6 +65,18 @@ namespace grainmpm
     void
     write_output(const unsigned int step, const double time, const double dt);
 
+    /**
+     * Write checkpoint-NNNNNN (Checkpoint subsection): the triangulation
+     * with the material points, and the state below.
+     */
+    void
+    write_checkpoint();
+
+    /** Read or write the scalar state of the run with @p archive. */
+    template <class Archive>
+    void
+    serialize_state(Archive &archive);
+
     const Parameters<dim> &parameters;
     const MPI_Comm         communicator;
     ConditionalOStream     pcout;
@@ -106,6 +119,23 @@ namespace grainmpm
     } implicit_totals;
     /** sum_p m_p |v_p| at t = 0, the scale of momentum errors. */
     double initial_momentum_scale = 0.;
+
+    /**
+     * Where the time loop starts (0, or a checkpoint): time, desired next
+     * step, step number; the next output time, the failure policy's step
+     * limit and easy steps, steps with contact, the smallest time step.
+     */
+    double       start_time        = 0.;
+    double       next_step_size    = 0.;
+    unsigned int step_offset       = 0;
+    double       next_output       = 0.;
+    double       step_limit        = 0.;
+    unsigned int easy_steps        = 0;
+    unsigned int n_contact_steps   = 0;
+    double       minimum_time_step = 0.;
+    /** Wall-clock time of the last checkpoint, and the ones kept. */
+    std::chrono::steady_clock::time_point last_checkpoint;
+    std::vector<std::string>              checkpoints;
   };
 
   /**

@@ -296,6 +296,48 @@ namespace grainmpm
 
 
 
+  // ---------------------------------------------------------- checkpoint
+
+  void
+  CheckpointParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Checkpoint");
+    prm.add_parameter("Steps between checkpoints",
+                      steps_between,
+                      "Write a checkpoint every this many time steps; 0: "
+                      "never (by steps). A checkpoint is the directory "
+                      "checkpoint-NNNNNN (the step number) in the output "
+                      "directory: the triangulation and the material points "
+                      "with all properties (deal.II serialization), time, "
+                      "time step, step number, the energy ledger and the "
+                      "output records. It is written under a temporary "
+                      "name and renamed when complete, so a run killed "
+                      "while writing leaves the previous checkpoint usable. "
+                      "Dimensionless.",
+                      Patterns::Integer(0));
+    prm.add_parameter("Minutes between checkpoints",
+                      minutes_between,
+                      "Write a checkpoint when this much wall-clock time has "
+                      "passed since the last one (checked after every "
+                      "step); 0: never (by time). Units: minutes.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Checkpoints kept",
+                      n_kept,
+                      "How many of the newest checkpoints to keep; older "
+                      "ones are deleted. Dimensionless.",
+                      Patterns::Integer(1));
+    prm.add_parameter("Resume from",
+                      resume_from,
+                      "A checkpoint directory (for example "
+                      "results/checkpoint-000100) to continue from, with "
+                      "the same parameter file otherwise; energy.csv and "
+                      "grains.csv are cut back to the checkpoint and "
+                      "continued. Empty: start at t = 0.");
+    prm.leave_subsection();
+  }
+
+
+
   // ------------------------------------------------------ random packing
 
   template <int dim>
@@ -1093,6 +1135,7 @@ namespace grainmpm
     nonlinear_solver.declare(prm);
     linear_solver.declare(prm);
     output.declare(prm);
+    checkpoint.declare(prm);
   }
 
 

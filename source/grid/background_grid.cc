@@ -25,7 +25,17 @@ namespace grainmpm
                                               parameters.lower_corner,
                                               parameters.upper_corner,
                                               /*colorize=*/true);
+    setup_node_tables();
+  }
+
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::setup_node_tables()
+  {
     dof_handler.distribute_dofs(fe);
+    locally_relevant_dofs.clear();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
 
     for (unsigned int d = 0; d < dim; ++d)
@@ -66,6 +76,7 @@ namespace grainmpm
                   }
               }
         }
+    boundary_node_list.clear();
     for (unsigned int node = 0; node < node_face_masks.size(); ++node)
       if (node_face_masks[node] != 0)
         boundary_node_list.push_back(node);
@@ -189,6 +200,16 @@ namespace grainmpm
   BackgroundGrid<dim>::locally_relevant_nodes() const
   {
     return locally_relevant_dofs;
+  }
+
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::load(const std::string &filename)
+  {
+    triangulation.load(filename);
+    setup_node_tables();
   }
 
 

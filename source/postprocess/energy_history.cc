@@ -4,9 +4,11 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/postprocess/energy_history.h>
+#include <grainmpm/postprocess/history_file.h>
 
 #include <deal.II/base/mpi.h>
 
+#include <filesystem>
 #include <iomanip>
 
 namespace grainmpm
@@ -17,18 +19,18 @@ namespace grainmpm
     const std::vector<GrainInfo<dim>>                          &grains,
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
     const Tensor<1, dim>                                       &gravity,
-    const MPI_Comm                                              communicator)
+    const MPI_Comm                                              communicator,
+    const std::uintmax_t                                        resume_length)
     : gravity(gravity)
+    , filename(filename)
     , grains(grains)
     , materials(materials)
     , communicator(communicator)
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
-    file.open(filename);
-    if (!file)
-      throw InputError("Output/Output directory",
-                       "cannot write the file '" + filename + "'.");
+    if (!open_history_file(file, filename, resume_length))
+      return;
     const std::string energy  = (dim == 2 ? "M L^2/T^2 per L" : "M L^2/T^2");
     const std::string impulse = (dim == 2 ? "M L/T per L" : "M L/T");
     file << "step,time [T],dt [T],kinetic_energy [" << energy
@@ -48,6 +50,18 @@ namespace grainmpm
          << "],transfer_work [" << energy << "],balance_residual [" << energy
          << "]\n"
          << std::flush;
+  }
+
+
+
+  template <int dim>
+  std::uintmax_t
+  EnergyHistory<dim>::length()
+  {
+    if (!file.is_open())
+      return 0;
+    file.flush();
+    return std::filesystem::file_size(filename);
   }
 
 

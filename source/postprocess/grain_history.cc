@@ -4,26 +4,28 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/postprocess/grain_history.h>
+#include <grainmpm/postprocess/history_file.h>
 
 #include <deal.II/base/mpi.h>
 
+#include <filesystem>
 #include <iomanip>
 
 namespace grainmpm
 {
   template <int dim>
-  GrainHistory<dim>::GrainHistory(const std::string &filename,
-                                  const unsigned int n_grains,
-                                  const MPI_Comm     communicator)
+  GrainHistory<dim>::GrainHistory(const std::string   &filename,
+                                  const unsigned int   n_grains,
+                                  const MPI_Comm       communicator,
+                                  const std::uintmax_t resume_length)
     : n_grains(n_grains)
     , communicator(communicator)
+    , filename(filename)
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
-    file.open(filename);
-    if (!file)
-      throw InputError("Output/Output directory",
-                       "cannot write the file '" + filename + "'.");
+    if (!open_history_file(file, filename, resume_length))
+      return;
     file << "time [T],grain [1],mass [M]";
     for (unsigned int d = 0; d < dim; ++d)
       file << ",centre_"
@@ -37,6 +39,18 @@ namespace grainmpm
       file << ",angular_velocity_x [1/T],angular_velocity_y "
               "[1/T],angular_velocity_z [1/T]";
     file << ",max_distance [L]\n" << std::flush;
+  }
+
+
+
+  template <int dim>
+  std::uintmax_t
+  GrainHistory<dim>::length()
+  {
+    if (!file.is_open())
+      return 0;
+    file.flush();
+    return std::filesystem::file_size(filename);
   }
 
 

@@ -317,6 +317,20 @@ namespace grainmpm
   };
 
   /**
+   * Subsection "Checkpoint".
+   */
+  struct CheckpointParameters
+  {
+    unsigned int steps_between   = 0;
+    double       minutes_between = 0.;
+    unsigned int n_kept          = 2;
+    std::string  resume_from;
+
+    void
+    declare(ParameterHandler &prm);
+  };
+
+  /**
    * All run-time parameters, one struct per subsection of the parameter
    * file (DESIGN.md section 6). Handed to the simulator as a const reference.
    */
@@ -361,6 +375,7 @@ namespace grainmpm
     NonlinearSolverParameters nonlinear_solver;
     LinearSolverParameters    linear_solver;
     OutputParameters          output;
+    CheckpointParameters      checkpoint;
 
     /**
      * Declare every entry. @p material_names and @p grain_names are the

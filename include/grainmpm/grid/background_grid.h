@@ -45,6 +45,14 @@ namespace grainmpm
     const parallel::distributed::Triangulation<dim> &
     get_triangulation() const;
 
+    /**
+     * Load the cells and their attached data (material points) written by
+     * Triangulation::save() to @p filename (a checkpoint); the coarse mesh,
+     * and so every node and DoF, stays the same.
+     */
+    void
+    load(const std::string &filename);
+
     /** The DoF handler of the scalar Q1 element: one DoF per node. */
     const DoFHandler<dim> &
     get_dof_handler() const;
@@ -104,15 +112,22 @@ namespace grainmpm
   private:
     const BackgroundGridParameters<dim>      &parameters;
     parallel::distributed::Triangulation<dim> triangulation;
-    FE_Q<dim>                                 fe;
-    DoFHandler<dim>                           dof_handler;
-    MappingCartesian<dim>                     mapping;
-    IndexSet                                  locally_relevant_dofs;
-    Tensor<1, dim>                            cell_extent;
-    std::vector<unsigned int>                 cell_node_table;
-    std::vector<Point<dim>>                   node_positions;
-    std::vector<unsigned int>                 node_face_masks;
-    std::vector<unsigned int>                 boundary_node_list;
+    /**
+     * Distribute the DoFs and fill the node tables below from the current
+     * cells (after construction and after load()).
+     */
+    void
+    setup_node_tables();
+
+    FE_Q<dim>                 fe;
+    DoFHandler<dim>           dof_handler;
+    MappingCartesian<dim>     mapping;
+    IndexSet                  locally_relevant_dofs;
+    Tensor<1, dim>            cell_extent;
+    std::vector<unsigned int> cell_node_table;
+    std::vector<Point<dim>>   node_positions;
+    std::vector<unsigned int> node_face_masks;
+    std::vector<unsigned int> boundary_node_list;
   };
 
 

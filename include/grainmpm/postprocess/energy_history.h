@@ -10,6 +10,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <cstdint>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -37,6 +38,13 @@ namespace grainmpm
     double gravity = 0.;
     /** sum_p m_p v_p. */
     Tensor<1, dim> momentum;
+
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &kinetic &elastic &gravity &momentum;
+    }
 
     /** Kinetic, elastic and gravity energy. */
     double
@@ -67,6 +75,13 @@ namespace grainmpm
      * lumped-mass loss).
      */
     double transfer = 0.;
+
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &plastic_work &friction_work &boundary_work &transfer;
+    }
 
     /** Add the step's entries. */
     void
@@ -106,7 +121,20 @@ namespace grainmpm
       const std::vector<GrainInfo<dim>>                          &grains,
       const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
       const Tensor<1, dim>                                       &gravity,
-      const MPI_Comm                                              communicator);
+      const MPI_Comm                                              communicator,
+      const std::uintmax_t resume_length = 0);
+
+    /** The length of the file so far (for a checkpoint). */
+    std::uintmax_t
+    length();
+
+    /** Checkpoint the zero of the gravity potential. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &initial_moment &have_initial_moment;
+    }
 
     /**
      * The summary of the particles of @p particle_handler; the first call
@@ -127,6 +155,7 @@ namespace grainmpm
 
   private:
     const Tensor<1, dim> gravity;
+    const std::string    filename;
     /** sum_p m_p x_p at the first compute(). */
     Tensor<1, dim>                     initial_moment;
     bool                               have_initial_moment = false;

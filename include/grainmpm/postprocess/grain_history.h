@@ -9,6 +9,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -44,9 +45,14 @@ namespace grainmpm
   class GrainHistory
   {
   public:
-    GrainHistory(const std::string &filename,
-                 const unsigned int n_grains,
-                 const MPI_Comm     communicator);
+    GrainHistory(const std::string   &filename,
+                 const unsigned int   n_grains,
+                 const MPI_Comm       communicator,
+                 const std::uintmax_t resume_length = 0);
+
+    /** The length of the file so far (for a checkpoint). */
+    std::uintmax_t
+    length();
 
     /** The motion of every grain. */
     std::vector<GrainMotion<dim>>
@@ -60,6 +66,7 @@ namespace grainmpm
   private:
     const unsigned int n_grains;
     const MPI_Comm     communicator;
+    const std::string  filename;
     std::ofstream      file;
   };
 } // namespace grainmpm

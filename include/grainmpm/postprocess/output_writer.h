@@ -69,6 +69,14 @@ namespace grainmpm
                const double               time,
                const unsigned int         index);
 
+    /** Checkpoint the .pvd records. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int)
+    {
+      archive &particle_records &grid_records;
+    }
+
   private:
     const OutputParameters                     &parameters;
     const BackgroundGrid<dim>                  &grid;

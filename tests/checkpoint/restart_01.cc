@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// Checkpoint/restart (subsection Checkpoint): a run writes a checkpoint
+// every N steps; a second run resumed from one of them in the same output
+// directory cuts energy.csv and grains.csv back to the checkpoint and
+// continues. The files at the end must be byte-for-byte those of the
+// uninterrupted run:
+// (a) the implicit two-disk collision (prm/two_disks_implicit.prm),
+//     checkpoints every 4 steps, resumed from step 28 of 37;
+// (b) the explicit single grain between walls to t = 0.3, resumed from
+//     step 1400, shortly after the first wall impact;
+// (c) only the newest 'Checkpoints kept' remain, and a half-written
+//     checkpoint-NNNNNN.tmp left by a killed run does not disturb a resume.
+
+#include <grainmpm/simulator.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "../tests.h"
+
+using namespace grainmpm;
+
+std::string
+contents(const std::string &filename)
+{
+  std::ifstream      in(filename, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+
+
+std::string
+yes_no(const bool condition)
+{
+  return condition ? "yes" : "no";
+}
+
+
+
+void
+check(const std::string &name,
+      const std::string &shipped_case,
+      const std::string &extra,
+      const unsigned int interval,
+      const unsigned int resume_step)
+{
+  const std::string directory = "results-" + name;
+  std::filesystem::remove_all(directory);
+  {
+    std::ofstream prm(name + ".prm");
+    prm << "include " << GRAINMPM_SOURCE_DIR << "/prm/" << shipped_case
+        << ".prm\n"
+        << extra << "subsection Output\n  set Output directory = " << directory
+        << "\n  set Test mode = true\n  set Output interval = 0.1\n"
+        << "  set Write particles = false\n  set Write grid = false\nend\n"
+        << "subsection Checkpoint\n  set Steps between checkpoints = "
+        << interval << "\n  set Checkpoints kept = 3\nend\n";
+  }
+  grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
+  const std::string energy = contents(directory + "/energy.csv");
+  const std::string grains = contents(directory + "/grains.csv");
+
+  unsigned int n_checkpoints = 0;
+  for (const auto &entry : std::filesystem::directory_iterator(directory))
+    if (entry.path().filename().string().rfind("checkpoint-", 0) == 0)
+      ++n_checkpoints;
+
+  // A killed run's half-written checkpoint.
+  std::filesystem::create_directories(directory + "/checkpoint-999999.tmp");
+  std::ofstream(directory + "/checkpoint-999999.tmp/state") << "garbage";
+
+  std::ostringstream checkpoint;
+  checkpoint << directory << "/checkpoint-" << std::setw(6) << std::setfill('0')
+             << resume_step;
+  {
+    std::ofstream prm(name + "_resumed.prm");
+    prm << "include " << name << ".prm\n"
+        << "subsection Checkpoint\n  set Resume from = " << checkpoint.str()
+        << "\nend\n";
+  }
+  grainmpm::run<2>(name + "_resumed.prm", MPI_COMM_WORLD);
+  unsigned int n_after = 0;
+  for (const auto &entry : std::filesystem::directory_iterator(directory))
+    if (entry.path().filename().string().rfind("checkpoint-", 0) == 0 &&
+        entry.path().extension() != ".tmp")
+      ++n_after;
+
+  deallog << name << ": " << n_checkpoints << " checkpoints kept (3 asked)"
+          << std::endl;
+  deallog << "  3 kept also after the resumed run rewrote its checkpoints: "
+          << yes_no(n_after == 3) << std::endl;
+  deallog << "  resumed energy.csv = uninterrupted, byte for byte: "
+          << yes_no(contents(directory + "/energy.csv") == energy &&
+                    energy.size() > 1000)
+          << std::endl;
+  deallog << "  resumed grains.csv = uninterrupted, byte for byte: "
+          << yes_no(contents(directory + "/grains.csv") == grains &&
+                    grains.size() > 100)
+          << std::endl;
+}
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  check("disks", "two_disks_implicit", "", 4, 28);
+  check("grain",
+        "single_grain_rebound_explicit",
+        "subsection Time stepping\n  set End time = 0.3\nend\n",
+        700,
+        1400);
+}
