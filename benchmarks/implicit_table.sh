@@ -21,35 +21,8 @@ grainmpm=$(realpath "$build/source/grainmpm")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text.
-run() {
-  local name=$1 case=$2 extra=$3
-  {
-    echo "include $PWD/prm/$case.prm"
-    printf '%b\n' "$extra"
-    printf 'subsection Output\n  set Output directory = %s\n  set Test mode = true\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name"
-  } > "$work/$name.prm"
-  (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
-}
-
-# value NAME PATTERN: the number after PATTERN in the summary.
-value() {
-  grep -F "$2" "$work/$1.out" | head -1 | sed 's/.*[:=] *//; s/,.*//; s/ .*//'
-}
-
-# speeds NAME: |v_x| of grain 1 in its first five rebound flights: the
-# median over each run of outputs with one sign of v_x, after the first.
-speeds() {
-  awk -F, 'NR > 1 && $2 == 1 { s = ($6 < 0 ? -1 : 1);
-      if (n == 0 || s != sign[n]) { ++n; sign[n] = s; count[n] = 0 }
-      speed[n, ++count[n]] = s * $6 }
-    END { printed = 0;
-      for (k = 2; k <= n && printed < 5; ++k) {
-        if (count[k] < 3) continue;
-        m = count[k]; for (i = 1; i <= m; ++i) a[i] = speed[k, i];
-        for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
-        printf "%s%.3f", (printed > 0 ? " " : ""), a[int((m + 1) / 2)]; ++printed } }' "$work/$1/grains.csv"
-}
+# shellcheck source=common/run_case.sh
+source benchmarks/common/run_case.sh
 
 echo "| case | CFL | preconditioner | steps | Newton/step | GMRES/Newton | residual evaluations/step | rejected | E_total(end)/E0 | E_el(end)/E0 | grid step share | transfer share | |v_x| in flights 1-5 |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
@@ -58,14 +31,14 @@ for cfl in 1 2.5 5 10; do
     name="grain_${cfl}_${preconditioner// /_}"
     run "$name" single_grain_rebound_implicit \
       "subsection Time stepping\n  set CFL number = $cfl\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\n  set Maximum linear iterations = 1000\nend"
-    echo "| single grain | $cfl | $preconditioner | $(value "$name" "finished:" | sed 's/ .*//') $(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //') | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $(value "$name" "residual evaluations per step") | $(value "$name" "rejected steps") | $(value "$name" "E_total(end)") | $(value "$name" "E_el(end)") | $(value "$name" "by the grid step") | $(value "$name" "by the transfers") | $(speeds "$name") |" | sed 's/|  *[^|]* \([0-9][0-9]*\) |/| \1 |/'
+    echo "| single grain | $cfl | $preconditioner | $(value "$name" "finished:" | sed 's/ .*//') $(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //') | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $(value "$name" "residual evaluations per step") | $(value "$name" "rejected steps") | $(value "$name" "E_total(end)") | $(value "$name" "E_el(end)") | $(value "$name" "by the grid step") | $(ledger_entry "$name" transfers) | $(speeds "$name") |" | sed 's/|  *[^|]* \([0-9][0-9]*\) |/| \1 |/'
   done
 done
 for preconditioner in "probed Jacobi" "none"; do
   name="disks_${preconditioner// /_}"
   run "$name" two_disks_implicit \
     "subsection Linear solver\n  set Preconditioner = $preconditioner\n  set Maximum linear iterations = 1000\nend"
-  echo "| two disks | 2.5 | $preconditioner | $(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //') | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $(value "$name" "residual evaluations per step") | $(value "$name" "rejected steps") | $(value "$name" "E_total(end)") | $(value "$name" "E_el(end)") | $(value "$name" "by the grid step") | $(value "$name" "by the transfers") | |"
+  echo "| two disks | 2.5 | $preconditioner | $(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //') | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $(value "$name" "residual evaluations per step") | $(value "$name" "rejected steps") | $(value "$name" "E_total(end)") | $(value "$name" "E_el(end)") | $(value "$name" "by the grid step") | $(ledger_entry "$name" transfers) | |"
 done
 
 run explicit single_grain_rebound_explicit ""

@@ -19,39 +19,12 @@ grainmpm=$(realpath "$build/source/grainmpm")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text.
-run() {
-  local name=$1 case=$2 extra=$3
-  {
-    echo "include $PWD/prm/$case.prm"
-    printf '%b\n' "$extra"
-    printf 'subsection Output\n  set Output directory = %s\n  set Test mode = true\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name"
-  } > "$work/$name.prm"
-  (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
-}
-
-# value NAME PATTERN: the number after PATTERN in the summary.
-value() {
-  grep -F "$2" "$work/$1.out" | head -1 | sed 's/.*[:=] *//; s/,.*//; s/ .*//'
-}
+# shellcheck source=common/run_case.sh
+source benchmarks/common/run_case.sh
 
 # ledger NAME: the ledger line of the summary, without its label.
 ledger() {
   grep -F "energy ledger" "$work/$1.out" | sed 's/.*): //'
-}
-
-# speeds NAME: |v_x| of grain 1 in its rebound flights (median of each run
-# of outputs with one sign of v_x, after the first).
-speeds() {
-  awk -F, 'NR > 1 && $2 == 1 { s = ($6 < 0 ? -1 : 1);
-      if (n == 0 || s != sign[n]) { ++n; sign[n] = s; count[n] = 0 }
-      speed[n, ++count[n]] = s * $6 }
-    END { printed = 0;
-      for (k = 2; k <= n && printed < 5; ++k) {
-        if (count[k] < 3) continue;
-        m = count[k]; for (i = 1; i <= m; ++i) a[i] = speed[k, i];
-        for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
-        printf "%s%.3f", (printed > 0 ? " " : ""), a[int((m + 1) / 2)]; ++printed } }' "$work/$1/grains.csv"
 }
 
 echo "| run | E(end)/E(0) | E_el(end)/E(0) | ledger / E(0) | rebound speeds |"

@@ -1,0 +1,43 @@
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Copyright (C) 2026 by the grainmpm authors
+#
+# Shell functions of the benchmark scripts that run shipped cases; source
+# it with $grainmpm (the executable) and $work (a scratch directory) set,
+# from the top of the repository.
+
+# run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text.
+run() {
+  local name=$1 case=$2 extra=$3
+  {
+    echo "include $PWD/prm/$case.prm"
+    printf '%b\n' "$extra"
+    printf 'subsection Output\n  set Output directory = %s\n  set Test mode = true\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name"
+  } > "$work/$name.prm"
+  (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
+}
+
+# value NAME PATTERN: the number after PATTERN in the summary.
+value() {
+  grep -F "$2" "$work/$1.out" | head -1 | sed 's/.*[:=] *//; s/,.*//; s/ .*//'
+}
+
+# speeds NAME: |v_x| of grain 1 in its first five rebound flights: the
+# median over each run of outputs with one sign of v_x, after the first.
+speeds() {
+  awk -F, 'NR > 1 && $2 == 1 { s = ($6 < 0 ? -1 : 1);
+      if (n == 0 || s != sign[n]) { ++n; sign[n] = s; count[n] = 0 }
+      speed[n, ++count[n]] = s * $6 }
+    END { printed = 0;
+      for (k = 2; k <= n && printed < 5; ++k) {
+        if (count[k] < 3) continue;
+        m = count[k]; for (i = 1; i <= m; ++i) a[i] = speed[k, i];
+        for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
+        printf "%s%.3f", (printed > 0 ? " " : ""), a[int((m + 1) / 2)]; ++printed } }' "$work/$1/grains.csv"
+}
+
+# ledger_entry NAME KEY: the number after "KEY = " in the summary's energy
+# ledger line (KEY: plastic work, friction work, boundary work, transfers,
+# balance residual).
+ledger_entry() {
+  grep -F "energy ledger" "$work/$1.out" | sed "s/.*$2 = //; s/[, ].*//"
+}
