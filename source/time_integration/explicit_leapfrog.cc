@@ -48,9 +48,9 @@ namespace grainmpm
       compute_forces(particle_handler);
 
     integrate_grid_velocities(dt);
-    const VectorType unconstrained(velocities_new);
+    unconstrained_velocities = velocities_new;
     statistics.n_contact_nodes += apply_constraints(velocities_new);
-    this->add_constraint_work(unconstrained,
+    this->add_constraint_work(unconstrained_velocities,
                               velocities_new,
                               velocities_new,
                               statistics);

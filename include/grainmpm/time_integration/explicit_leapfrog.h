@@ -82,6 +82,8 @@ namespace grainmpm
     using TimeIntegrator<dim>::velocities_from_momenta;
 
     VectorType forces;
+    /** The end velocities before the constraints (for their work). */
+    VectorType unconstrained_velocities;
     /** v^n after contact and walls (USF strain velocity). */
     VectorType velocities_old;
   };
