@@ -345,6 +345,7 @@ namespace grainmpm
         grid_energy_change += statistics.grid_energy_change;
         ledger.add(statistics);
         n_removed += statistics.n_removed;
+        n_held_at_walls += statistics.n_held_at_walls;
         if (statistics.n_contact_nodes > 0)
           ++n_contact_steps;
         if (statistics.n_removed > 0)
@@ -440,8 +441,12 @@ namespace grainmpm
           << "  steps with contact:       " << n_contact_steps << "\n"
           << "  particles removed:        " << n_removed << "\n"
           << "  material points left:     "
-          << particle_handler.n_global_particles() << "\n"
-          << "  E_total(end) / " << scale << " = "
+          << particle_handler.n_global_particles() << "\n";
+    if (n_held_at_walls > 0)
+      pcout << "  points held at walls:     " << n_held_at_walls
+            << " times (carried less than half a cell through a closed "
+               "face)\n";
+    pcout << "  E_total(end) / " << scale << " = "
           << current_energy.total() / reference << "\n"
           << "  min, max E_total / " << scale << " = "
           << minimum_energy / reference << ", " << maximum_energy / reference
@@ -520,8 +525,9 @@ namespace grainmpm
   Simulator<dim>::serialize_state(Archive &archive)
   {
     archive &start_time &next_step_size &step_offset &next_output &step_limit;
-    archive &easy_steps &n_contact_steps          &minimum_time_step;
-    archive &n_outputs &n_removed &initial_energy &current_energy;
+    archive &easy_steps &n_contact_steps &minimum_time_step;
+    archive &n_outputs &n_removed &n_held_at_walls &initial_energy
+                                                                &current_energy;
     archive &minimum_energy &maximum_energy &grid_energy_change &ledger;
     archive &largest_balance &largest_kinetic_elastic &initial_momentum_scale;
     archive &implicit_totals.newton_iterations &implicit_totals

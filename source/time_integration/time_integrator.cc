@@ -344,7 +344,11 @@ namespace grainmpm
         max_speed_square =
           std::max(max_speed_square, new_velocity.norm_square());
 
-        // Leaving the box: removed through an open face, an error otherwise.
+        // Leaving the box: removed through an open face. A deformable
+        // point that the interpolated velocity carries less than half a
+        // cell through a closed (rigid) face is put back on the face: the
+        // wall constrains the nodes, not the interpolation between them.
+        // Anything more is an error.
         for (unsigned int d = 0; d < dim; ++d)
           if (new_position[d] < lower[d] || new_position[d] > upper[d])
             {
@@ -352,6 +356,15 @@ namespace grainmpm
                 2 * d + (new_position[d] > upper[d] ? 1 : 0);
               const BoundaryCondition &condition =
                 grid.boundary_condition(face);
+              const double overshoot = std::max(lower[d] - new_position[d],
+                                                new_position[d] - upper[d]);
+              if (condition.type != BoundaryType::open &&
+                  !grains[grain].rigid && overshoot < 0.5 * h[d])
+                {
+                  new_position[d] = (face % 2 == 0) ? lower[d] : upper[d];
+                  ++statistics.n_held_at_walls;
+                  continue;
+                }
               if (condition.type == BoundaryType::open)
                 {
                   particles_to_remove.push_back(particle);

@@ -33,6 +33,11 @@ namespace grainmpm
     unsigned int n_contact_nodes = 0;
     /** Particles removed through open faces in this step. */
     types::particle_index n_removed = 0;
+    /**
+     * Deformable particles put back on a closed face that the interpolated
+     * velocity had carried less than half a cell through.
+     */
+    types::particle_index n_held_at_walls = 0;
     /** Largest particle speed after the step. */
     double max_speed = 0.;
     /** True if some particle changed cells and the handler was sorted. */
