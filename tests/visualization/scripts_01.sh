@@ -43,7 +43,7 @@ done
 
 # One virtual display for all ParaView calls (several xvfb-run -a in a row
 # can race for the same display number); Xvfb picks a free one itself.
-Xvfb -displayfd 3 -screen 0 1600x1200x24 -nolisten tcp 3> display.txt \
+Xvfb -displayfd 3 -screen 0 1600x1200x24 -nolisten tcp -ac 3> display.txt \
   2> xvfb.log &
 xvfb_pid=$!
 trap 'kill $xvfb_pid 2> /dev/null; wait $xvfb_pid 2> /dev/null' EXIT
@@ -57,6 +57,22 @@ if ! [ -s display.txt ]; then
   exit 1
 fi
 export DISPLAY=":$(head -1 display.txt)"
+
+# pv SCRIPT ARGS: pvbatch, tried again (up to three times) if it could not
+# connect to the display, which happens now and then under load.
+pv() {
+  local attempt
+  for attempt in 1 2 3; do
+    if pvbatch "$@" > pv.log 2>&1; then
+      cat pv.log
+      return 0
+    fi
+    grep -q "bad X server connection" pv.log || break
+    sleep 1
+  done
+  cat pv.log
+  return 1
+}
 
 for scheme in explicit implicit; do
   cat > "$scheme.prm" <<PRM
@@ -123,18 +139,18 @@ print("largest fringe order %.3g, worst difference %.3g" % (largest, worst))
 if not (largest > 0.1 and worst <= 1e-6 * largest):
     sys.exit("fringe_order is not thickness / fringe value x (sigma_1 - sigma_2)")
 PY
-check fringe_order_field pvbatch fields.py results-implicit/particles.pvd
+check fringe_order_field pv fields.py results-implicit/particles.pvd
 
 visualization=$source_dir/visualization
-check fringe_help pvbatch "$visualization/fringe_pattern.py" --help
-check render_help pvbatch "$visualization/render_grains.py" --help
+check fringe_help pv "$visualization/fringe_pattern.py" --help
+check render_help pv "$visualization/render_grains.py" --help
 check plot_help /usr/bin/python3 "$visualization/plot_energy.py" --help
 
-check fringe_pattern pvbatch "$visualization/fringe_pattern.py" \
+check fringe_pattern pv "$visualization/fringe_pattern.py" \
   results-implicit/particles.pvd --time 2 --output fringe.png --resolution 400 260
 check fringe_png /usr/bin/python3 not_blank.py fringe.png 400 260
 
-check render_grains pvbatch "$visualization/render_grains.py" \
+check render_grains pv "$visualization/render_grains.py" \
   results-explicit/particles.pvd results-implicit/particles.pvd \
   --times 0 2 --labels explicit implicit --output grains.png --panel-size 200 150
 check grains_png /usr/bin/python3 not_blank.py grains.png 400 300 6
