@@ -21,7 +21,10 @@ N = F (sigma_1 - sigma_2) from the field principal_stress_difference.
 
 import argparse
 import math
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 
 def parse_arguments(argv):
@@ -72,19 +75,21 @@ def main(argv):
     from paraview import servermanager
     from paraview.simple import (
         Calculator,
-        CreateRenderView,
         GetColorTransferFunction,
         PVDReader,
-        ResetCamera,
         SaveScreenshot,
-        Show,
         UpdatePipeline,
     )
 
+    from particle_views import (
+        fit_top_view,
+        output_times,
+        particle_view,
+        splat_spacing,
+    )
+
     reader = PVDReader(FileName=arguments.pvd)
-    times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
-    if isinstance(reader.TimestepValues, float):
-        times = [reader.TimestepValues]
+    times = output_times(reader)
     time = (
         times[-1]
         if arguments.time is None
@@ -125,53 +130,17 @@ def main(argv):
                 "'Thickness'), or use --fringes-per-stress" % time
             )
 
-    # Splat size from the particle volume (area per unit thickness in 2D).
-    volumes = data.GetPointData().GetArray("volume")
-    sizes = sorted(volumes.GetValue(i) for i in range(n_points))
-    bounds = data.GetBounds()
-    three_d = bounds[5] - bounds[4] > 0.0
-    spacing = sizes[len(sizes) // 2] ** (1.0 / 3.0 if three_d else 0.5)
-
-    view = CreateRenderView()
-    view.ViewSize = arguments.resolution
-    view.OrientationAxesVisibility = 0
-    view.Background = [0.0, 0.0, 0.0]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.CameraParallelProjection = 1
-
-    display = Show(intensity, view)
-    display.SetRepresentationType("Point Gaussian")
-    display.ShaderPreset = "Plain circle"
-    display.GaussianRadius = 0.75 * spacing
-    display.ColorArrayName = ["POINTS", "intensity"]
     lut = GetColorTransferFunction("intensity")
     lut.ApplyPreset("Grayscale", True)
     lut.RescaleTransferFunction(0.0, 1.0)
     lut.AutomaticRescaleRangeMode = "Never"
-    display.LookupTable = lut
-    display.SetScalarBarVisibility(view, False)
-
-    view.ViewTime = time
-    ResetCamera(view)
-    view.CameraPosition = [
-        0.5 * (bounds[0] + bounds[1]),
-        0.5 * (bounds[2] + bounds[3]),
-        bounds[5] + 10.0 * max(bounds[1] - bounds[0], bounds[3] - bounds[2]),
-    ]
-    view.CameraFocalPoint = [
-        0.5 * (bounds[0] + bounds[1]),
-        0.5 * (bounds[2] + bounds[3]),
-        0.5 * (bounds[4] + bounds[5]),
-    ]
-    view.CameraViewUp = [0.0, 1.0, 0.0]
-    # Fit the particles with a margin of 3 %.
-    width = bounds[1] - bounds[0] + 2.0 * spacing
-    height = bounds[3] - bounds[2] + 2.0 * spacing
+    spacing = splat_spacing(data)
+    view = particle_view(
+        intensity, "intensity", lut, spacing, [0.0, 0.0, 0.0], time
+    )
+    view.ViewSize = arguments.resolution
     aspect = float(arguments.resolution[0]) / arguments.resolution[1]
-    view.CameraParallelScale = 0.515 * max(height, width / aspect)
+    fit_top_view(view, data.GetBounds(), spacing, aspect, 0.515)
     SaveScreenshot(
         arguments.output, view, ImageResolution=arguments.resolution
     )

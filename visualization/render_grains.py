@@ -16,7 +16,10 @@ is one row of panels per run.
 """
 
 import argparse
+import os
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 # Qualitative colours for grains 1, 2, ... (cycled).
 PALETTE = [
@@ -75,7 +78,6 @@ def main(argv):
     from paraview.simple import (
         AssignViewToLayout,
         CreateLayout,
-        CreateRenderView,
         GetColorTransferFunction,
         PVDReader,
         SaveScreenshot,
@@ -83,7 +85,13 @@ def main(argv):
         Text,
         UpdatePipeline,
     )
-    import os
+
+    from particle_views import (
+        fit_top_view,
+        output_times,
+        particle_view,
+        splat_spacing,
+    )
 
     if arguments.labels is not None and len(arguments.labels) != len(
         arguments.pvd
@@ -95,12 +103,7 @@ def main(argv):
     readers = []
     for pvd in arguments.pvd:
         reader = PVDReader(FileName=pvd)
-        times = reader.TimestepValues
-        times = list(times) if isinstance(times, (list, tuple)) or hasattr(
-            times, "__len__") else [times]
-        if not times:
-            times = [0.0]
-        readers.append((reader, times))
+        readers.append((reader, output_times(reader)))
 
     # The panels: (run, time) pairs, and the common box.
     panels = []
@@ -122,13 +125,7 @@ def main(argv):
                 bounds[2 * k + 1] = max(bounds[2 * k + 1], b[2 * k + 1])
             grains = data.GetPointData().GetArray("grain")
             largest_grain = max(largest_grain, int(grains.GetRange()[1]))
-            volumes = data.GetPointData().GetArray("volume")
-            n = data.GetNumberOfPoints()
-            sizes = sorted(volumes.GetValue(i) for i in range(n))
-            three_d = b[5] - b[4] > 0.0
-            spacing = max(
-                spacing, sizes[n // 2] ** (1.0 / 3.0 if three_d else 0.5)
-            )
+            spacing = max(spacing, splat_spacing(data))
             row.append(time)
         panels.append(row)
 
@@ -141,13 +138,6 @@ def main(argv):
     lut.Annotations = annotations
     lut.IndexedColors = colours
 
-    width = bounds[1] - bounds[0] + 2.0 * spacing
-    height = bounds[3] - bounds[2] + 2.0 * spacing
-    centre = [
-        0.5 * (bounds[0] + bounds[1]),
-        0.5 * (bounds[2] + bounds[3]),
-        0.5 * (bounds[4] + bounds[5]),
-    ]
     aspect = float(arguments.panel_size[0]) / arguments.panel_size[1]
 
     layout = CreateLayout("grains")
@@ -155,30 +145,10 @@ def main(argv):
     views = []
     for r, ((reader, _), row) in enumerate(zip(readers, panels)):
         for c, time in enumerate(row):
-            view = CreateRenderView()
-            view.OrientationAxesVisibility = 0
-            view.Background = [1.0, 1.0, 1.0]
-            try:
-                view.UseColorPaletteForBackground = 0
-            except AttributeError:
-                pass
-            view.CameraParallelProjection = 1
-            view.ViewTime = time
-            display = Show(reader, view)
-            display.SetRepresentationType("Point Gaussian")
-            display.ShaderPreset = "Plain circle"
-            display.GaussianRadius = 0.75 * spacing
-            display.ColorArrayName = ["POINTS", "grain"]
-            display.LookupTable = lut
-            display.SetScalarBarVisibility(view, False)
-            view.CameraFocalPoint = centre
-            view.CameraPosition = [
-                centre[0],
-                centre[1],
-                bounds[5] + 10.0 * max(width, height),
-            ]
-            view.CameraViewUp = [0.0, 1.0, 0.0]
-            view.CameraParallelScale = 0.56 * max(height, width / aspect)
+            view = particle_view(
+                reader, "grain", lut, spacing, [1.0, 1.0, 1.0], time
+            )
+            fit_top_view(view, bounds, spacing, aspect, 0.56)
             caption = Text(Text="%s, t = %g" % (labels[r], time))
             caption_display = Show(caption, view)
             caption_display.WindowLocation = "Upper Left Corner"
