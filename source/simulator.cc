@@ -40,11 +40,6 @@ namespace grainmpm
                        grid.get_mapping(),
                        MaterialPointLayout<dim>::n_properties)
   {
-    if (Utilities::MPI::n_mpi_processes(communicator) != 1)
-      throw InputError("",
-                       "this version of grainmpm runs on one MPI rank; run "
-                       "it without mpirun (parallel runs are planned).");
-
     // Record the inputs before anything can fail (DESIGN.md section 6).
     const std::string &directory = parameters.output.directory;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -192,6 +187,11 @@ namespace grainmpm
         serialize_state(*resume_archive);
         *resume_archive >> *energy_history >> *output_writer;
       }
+    // The grains fill only part of the box: balance the material points.
+    // A checkpoint is written right after a repartition, so a resumed run
+    // has the partition of the uninterrupted one (and its bits) when it
+    // runs on as many ranks.
+    balance_load();
     pcout << "grainmpm: " << dim << "D, "
           << grid.get_triangulation().n_global_active_cells() << " cells, "
           << grains.size() << " grains, "
@@ -400,15 +400,30 @@ namespace grainmpm
             time.set_desired_next_step_size(next_step);
           }
 
-        // Checkpoint by steps or wall-clock time.
-        const auto &checkpoint = parameters.checkpoint;
-        if (!time.is_at_end() &&
-            ((checkpoint.steps_between > 0 &&
-              step_number() % checkpoint.steps_between == 0) ||
-             (checkpoint.minutes_between > 0. &&
+        // Repartition after the output (the grid output reads the slot
+        // layout of the step), at the interval and before a checkpoint:
+        // a resumed run repartitions first, by the same weights.
+        const auto        &checkpoint = parameters.checkpoint;
+        const unsigned int balance_interval =
+          parameters.load_balancing.steps_between;
+        // (The ranks' clocks differ: rank 0 decides.)
+        const bool checkpoint_now =
+          !time.is_at_end() &&
+          ((checkpoint.steps_between > 0 &&
+            step_number() % checkpoint.steps_between == 0) ||
+           (checkpoint.minutes_between > 0. &&
+            Utilities::MPI::broadcast(
+              communicator,
               std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                             last_checkpoint)
-                  .count() >= 60. * checkpoint.minutes_between)))
+                  .count() >= 60. * checkpoint.minutes_between)));
+        if (!time.is_at_end() &&
+            (checkpoint_now ||
+             (balance_interval > 0 && step_number() % balance_interval == 0)))
+          balance_load();
+
+        // Checkpoint by steps or wall-clock time.
+        if (checkpoint_now)
           {
             TimerOutput::Scope scope(timer, "checkpoint");
             // The state is that of a run starting here.
@@ -534,6 +549,20 @@ namespace grainmpm
       .linear_iterations &implicit_totals.residual_evaluations &implicit_totals
       .status_changes &implicit_totals.max_newton_iterations &implicit_totals
       .rejected &implicit_totals.smallest_step;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::balance_load()
+  {
+    if (Utilities::MPI::n_mpi_processes(communicator) == 1 ||
+        parameters.load_balancing.steps_between == 0)
+      return;
+    TimerOutput::Scope scope(timer, "load balancing");
+    grid.repartition(particle_handler,
+                     parameters.load_balancing.particle_weight);
   }
 
 

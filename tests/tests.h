@@ -9,6 +9,7 @@
 #define grainmpm_tests_tests_h
 
 #include <deal.II/base/logstream.h>
+#include <deal.II/base/mpi.h>
 
 #include <cmath>
 #include <fstream>
@@ -23,6 +24,19 @@ initlog()
   dealii::deallog.depth_console(0);
   logfile << std::setprecision(6);
   dealii::deallog << std::setprecision(6);
+}
+
+/**
+ * initlog() for tests run on several MPI ranks: rank 0 writes the output,
+ * the others write nothing.
+ */
+inline void
+initlog_on_root(const MPI_Comm communicator = MPI_COMM_WORLD)
+{
+  if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+    initlog();
+  else
+    dealii::deallog.depth_console(0);
 }
 
 /** x, or zero if |x| < tolerance: round-off zeros print as 0. */

@@ -155,7 +155,7 @@ main(int argc, char *argv[])
   TransferCache<2>    cache;
   GrainFieldLayout<2> layout;
   cache.reinit(grid, particle_handler, {0});
-  layout.reinit(cache, grid.n_nodes(), MPI_COMM_WORLD);
+  layout.reinit(cache, grid);
   plain.slots = cache.slots;
   for (const auto &G : cache.shape_gradients)
     {

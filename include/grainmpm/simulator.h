@@ -66,6 +66,14 @@ namespace grainmpm
     write_output(const unsigned int step, const double time, const double dt);
 
     /**
+     * With more than one MPI rank and Load balancing/Steps between
+     * repartitioning > 0: repartition the cells weighted by their material
+     * points (BackgroundGrid::repartition()).
+     */
+    void
+    balance_load();
+
+    /**
      * Write checkpoint-NNNNNN (Checkpoint subsection): the triangulation
      * with the material points, and the state below.
      */

@@ -296,6 +296,33 @@ namespace grainmpm
 
 
 
+  // ------------------------------------------------------ load balancing
+
+  void
+  LoadBalancingParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Load balancing");
+    prm.add_parameter("Steps between repartitioning",
+                      steps_between,
+                      "With more than one MPI rank: repartition the cells "
+                      "among the ranks at the start and every this many "
+                      "time steps, so that each rank carries about the same "
+                      "weight (material points follow their cells). 0: "
+                      "never; the cells then stay where p4est put them, "
+                      "equal numbers of cells per rank. Dimensionless.",
+                      Patterns::Integer(0));
+    prm.add_parameter("Particle weight",
+                      particle_weight,
+                      "The weight of a material point relative to a cell "
+                      "in the repartitioning: a cell weighs 1 plus this "
+                      "times its number of points (as in ASPECT and "
+                      "step-68). Dimensionless.",
+                      Patterns::Integer(0));
+    prm.leave_subsection();
+  }
+
+
+
   // ---------------------------------------------------------- checkpoint
 
   void
@@ -1136,6 +1163,7 @@ namespace grainmpm
     linear_solver.declare(prm);
     output.declare(prm);
     checkpoint.declare(prm);
+    load_balancing.declare(prm);
   }
 
 

@@ -35,8 +35,17 @@ namespace grainmpm
   BackgroundGrid<dim>::setup_node_tables()
   {
     dof_handler.distribute_dofs(fe);
-    locally_relevant_dofs.clear();
+    IndexSet locally_relevant_dofs;
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+    const IndexSet &locally_owned_dofs = dof_handler.locally_owned_dofs();
+    IndexSet        ghost_dofs         = locally_relevant_dofs;
+    ghost_dofs.subtract_set(locally_owned_dofs);
+    partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      locally_owned_dofs, ghost_dofs, triangulation.get_communicator());
+    const unsigned int n_local_nodes = locally_relevant_dofs.n_elements();
+    node_global_indices.resize(n_local_nodes);
+    for (unsigned int node = 0; node < n_local_nodes; ++node)
+      node_global_indices[node] = partitioner->local_to_global(node);
 
     for (unsigned int d = 0; d < dim; ++d)
       cell_extent[d] =
@@ -48,8 +57,8 @@ namespace grainmpm
     // lies on.
     cell_node_table.assign(nodes_per_cell * triangulation.n_active_cells(),
                            numbers::invalid_unsigned_int);
-    node_positions.resize(locally_relevant_dofs.n_elements());
-    node_face_masks.assign(locally_relevant_dofs.n_elements(), 0U);
+    node_positions.resize(n_local_nodes);
+    node_face_masks.assign(n_local_nodes, 0U);
     std::vector<types::global_dof_index> dof_indices(nodes_per_cell);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
@@ -58,7 +67,7 @@ namespace grainmpm
           for (unsigned int v = 0; v < nodes_per_cell; ++v)
             {
               const unsigned int node =
-                locally_relevant_dofs.index_within_set(dof_indices[v]);
+                partitioner->global_to_local(dof_indices[v]);
               cell_node_table[nodes_per_cell * cell->active_cell_index() + v] =
                 node;
               node_positions[node] = cell->vertex(v);
@@ -69,15 +78,15 @@ namespace grainmpm
                 const unsigned int face = cell->face(f)->boundary_id();
                 for (const unsigned int v : cell->face(f)->vertex_indices())
                   {
-                    const unsigned int node =
-                      locally_relevant_dofs.index_within_set(
-                        cell->face(f)->vertex_dof_index(v, 0));
+                    const unsigned int node = partitioner->global_to_local(
+                      cell->face(f)->vertex_dof_index(v, 0));
                     node_face_masks[node] |= (1U << face);
                   }
               }
         }
+    // Walls act on the slots of owned nodes (their owner applies them).
     boundary_node_list.clear();
-    for (unsigned int node = 0; node < node_face_masks.size(); ++node)
+    for (unsigned int node = 0; node < n_owned_nodes(); ++node)
       if (node_face_masks[node] != 0)
         boundary_node_list.push_back(node);
   }
@@ -124,7 +133,59 @@ namespace grainmpm
   unsigned int
   BackgroundGrid<dim>::n_nodes() const
   {
-    return locally_relevant_dofs.n_elements();
+    return node_global_indices.size();
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  BackgroundGrid<dim>::n_owned_nodes() const
+  {
+    return partitioner->locally_owned_size();
+  }
+
+
+
+  template <int dim>
+  types::global_dof_index
+  BackgroundGrid<dim>::node_global_index(const unsigned int node) const
+  {
+    return node_global_indices[node];
+  }
+
+
+
+  template <int dim>
+  const std::shared_ptr<const Utilities::MPI::Partitioner> &
+  BackgroundGrid<dim>::node_partitioner() const
+  {
+    return partitioner;
+  }
+
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::repartition(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const unsigned int               particle_weight)
+  {
+    // The weight signal as in step-68: the cost of a cell is its particles.
+    const auto connection = triangulation.signals.weight.connect(
+      [&particle_handler,
+       particle_weight](const typename Triangulation<dim>::cell_iterator &cell,
+                        const typename Triangulation<dim>::CellStatus status) {
+        if (status != Triangulation<dim>::CELL_PERSIST)
+          return 0U;
+        return static_cast<unsigned int>(
+          particle_weight * particle_handler.n_particles_in_cell(cell));
+      });
+    particle_handler.prepare_for_coarsening_and_refinement();
+    triangulation.repartition();
+    particle_handler.unpack_after_coarsening_and_refinement();
+    connection.disconnect();
+    setup_node_tables();
   }
 
 
@@ -191,15 +252,6 @@ namespace grainmpm
   BackgroundGrid<dim>::boundary_condition(const unsigned int face) const
   {
     return parameters.boundary_conditions[face];
-  }
-
-
-
-  template <int dim>
-  const IndexSet &
-  BackgroundGrid<dim>::locally_relevant_nodes() const
-  {
-    return locally_relevant_dofs;
   }
 
 

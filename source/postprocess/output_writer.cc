@@ -8,6 +8,7 @@
 
 #include <deal.II/fe/fe_q.h>
 
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/vector.h>
 
 #include <deal.II/numerics/data_out.h>
@@ -224,31 +225,38 @@ namespace grainmpm
     const auto &masses     = stepper.get_masses();
     const auto &velocities = stepper.get_velocities();
     const auto &contact    = stepper.get_node_contact_flags();
-    const auto &nodes      = grid.locally_relevant_nodes();
+    const auto &nodes      = *grid.node_partitioner();
+    using NodeVector       = LinearAlgebra::distributed::Vector<double>;
 
-    // Nodal sums over the slots of each node.
-    Vector<double>              nodal_mass(grid.get_dof_handler().n_dofs());
-    Vector<double>              n_grains(grid.get_dof_handler().n_dofs());
-    Vector<double>              contact_flag(grid.get_dof_handler().n_dofs());
-    std::vector<Tensor<1, dim>> momentum(grid.n_nodes());
+    // Nodal sums over the slots of each owned node (the owner has all the
+    // slots of its nodes), then copied to the ghost nodes.
+    NodeVector              nodal_mass(grid.node_partitioner());
+    NodeVector              n_grains(grid.node_partitioner());
+    NodeVector              contact_flag(grid.node_partitioner());
+    std::vector<NodeVector> momentum(dim, nodal_mass);
     for (unsigned int node = 0; node < layout.n_nodes(); ++node)
       {
-        const auto dof = nodes.nth_index_in_set(node);
         for (unsigned int s = layout.node_slots_begin(node);
              s < layout.node_slots_end(node);
              ++s)
           {
-            nodal_mass[dof] += masses.local_element(s);
+            nodal_mass.local_element(node) += masses.local_element(s);
             for (unsigned int d = 0; d < dim; ++d)
-              momentum[node][d] +=
+              momentum[d].local_element(node) +=
                 masses.local_element(s) * velocities.local_element(s * dim + d);
           }
-        n_grains[dof] =
+        n_grains.local_element(node) =
           layout.node_slots_end(node) - layout.node_slots_begin(node);
-        contact_flag[dof] = contact[node];
+        contact_flag.local_element(node) = contact[node];
       }
+    for (NodeVector *vector : {&nodal_mass, &n_grains, &contact_flag})
+      vector->update_ghost_values();
+    for (auto &vector : momentum)
+      vector.update_ghost_values();
 
-    // Centre-of-mass velocity on the vector-valued Q1 DoFs.
+    // Centre-of-mass velocity on the vector-valued Q1 DoFs of the owned
+    // cells (renumbered here: the cells may have been repartitioned).
+    vector_dof_handler.distribute_dofs(vector_fe);
     Vector<double> velocity(vector_dof_handler.n_dofs());
     auto           scalar_cell = grid.get_dof_handler().begin_active();
     for (const auto &cell : vector_dof_handler.active_cell_iterators())
@@ -256,12 +264,13 @@ namespace grainmpm
         if (cell->is_locally_owned())
           for (const unsigned int v : cell->vertex_indices())
             {
-              const auto dof  = scalar_cell->vertex_dof_index(v, 0);
-              const auto node = nodes.index_within_set(dof);
-              if (nodal_mass[dof] > 0.)
+              const unsigned int node =
+                nodes.global_to_local(scalar_cell->vertex_dof_index(v, 0));
+              const double mass = nodal_mass.local_element(node);
+              if (mass > 0.)
                 for (unsigned int d = 0; d < dim; ++d)
                   velocity[cell->vertex_dof_index(v, d)] =
-                    momentum[node][d] / nodal_mass[dof];
+                    momentum[d].local_element(node) / mass;
             }
         ++scalar_cell;
       }

@@ -32,7 +32,7 @@ namespace grainmpm
     // Everything that depends only on the positions at t^n, once per step.
     this->begin_step(particle_handler, time);
 
-    velocities_old = velocities_p2g;
+    copy_slot_vector(velocities_p2g, velocities_old);
     if (parameters.time_stepping.stress_update == StressUpdate::usf)
       {
         // Eqs. (8)-(10): strain from the (contact-corrected) v^n, then the
@@ -48,7 +48,7 @@ namespace grainmpm
       compute_forces(particle_handler);
 
     integrate_grid_velocities(dt);
-    unconstrained_velocities = velocities_new;
+    copy_slot_vector(velocities_new, unconstrained_velocities);
     statistics.n_contact_nodes += apply_constraints(velocities_new);
     this->add_constraint_work(unconstrained_velocities,
                               velocities_new,
@@ -87,6 +87,7 @@ namespace grainmpm
     using Layout = MaterialPointLayout<dim>;
     constexpr unsigned int per_particle =
       TransferCache<dim>::nodes_per_particle;
+    grid_velocities.update_ghost_values();
 
     std::size_t p = 0;
     for_each_particle(
@@ -173,6 +174,7 @@ namespace grainmpm
               }
           }
       });
+    forces.compress(VectorOperation::add);
   }
 
 
@@ -181,7 +183,7 @@ namespace grainmpm
   void
   ExplicitLeapfrog<dim>::integrate_grid_velocities(const double dt)
   {
-    velocities_new = velocities_old;
+    copy_slot_vector(velocities_old, velocities_new);
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
       {
         const double mass = masses.local_element(slot);
@@ -220,6 +222,7 @@ namespace grainmpm
                                 mass * shape * properties[Layout::velocity + d];
                           }
                       });
+    momenta.compress(VectorOperation::add);
     velocities_from_momenta(velocities_old);
   }
 

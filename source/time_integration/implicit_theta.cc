@@ -50,9 +50,9 @@ namespace grainmpm
     // Frozen at t^n: shape functions, slots, masses, normals; v^n with
     // contact and walls (reference/physics.md section 4.1).
     this->begin_step(particle_handler, time);
-    velocities_old = velocities_p2g;
+    copy_slot_vector(velocities_p2g, velocities_old);
     apply_constraints(velocities_old);
-    rigid_velocities = velocities_old;
+    copy_slot_vector(velocities_old, rigid_velocities);
     prescribe_rigid_velocities(rigid_velocities, time + dt);
 
     residual.reinit(cache,
@@ -68,7 +68,7 @@ namespace grainmpm
                     dt);
 
     // The first iterate: v^n, rigid slots at their velocity at t + dt.
-    unknowns = velocities_old;
+    copy_slot_vector(velocities_old, unknowns);
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       if (field_is_rigid[layout.field(s)])
         for (unsigned int d = 0; d < dim; ++d)
@@ -135,14 +135,16 @@ namespace grainmpm
                            velocities_new.local_element(k) *
                            velocities_new.local_element(k);
           }
-    const double strain_energy_old = residual.old_strain_energy();
-    double       strain_energy_new = 0.;
+    double energies[4] = {kinetic_old, kinetic_new, 0., 0.};
+    energies[2]        = residual.old_strain_energy();
     commit_particle_state(particle_handler,
                           theta_velocities,
-                          strain_energy_new,
+                          energies[3],
                           statistics.plastic_work);
-    grid_energies                 = {kinetic_old + strain_energy_old,
-                                     kinetic_new + strain_energy_new};
+    Utilities::MPI::sum(ArrayView<const double>(energies, 4),
+                        grid.get_triangulation().get_communicator(),
+                        ArrayView<double>(energies, 4));
+    grid_energies = {energies[0] + energies[2], energies[1] + energies[3]};
     statistics.grid_energy_change = grid_energies.second - grid_energies.first;
 
     this->grid_to_particles(
@@ -163,7 +165,8 @@ namespace grainmpm
     double                          &strain_energy,
     double                          &plastic_work)
   {
-    using Layout  = MaterialPointLayout<dim>;
+    using Layout = MaterialPointLayout<dim>;
+    theta_v.update_ghost_values();
     std::size_t p = 0;
     for_each_particle(
       grid, particle_handler, [&](const auto &, auto &particle) {

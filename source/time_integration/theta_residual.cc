@@ -72,6 +72,7 @@ namespace grainmpm
         largest_mass = std::max(largest_mass, properties[Layout::mass]);
         ++p;
       });
+    largest_mass = Utilities::MPI::max(largest_mass, communicator());
 
     // Unknowns: slots with a mass above round-off of the largest particle
     // mass (reference/physics.md section 4.1); rigid slots are prescribed.
@@ -244,12 +245,14 @@ namespace grainmpm
       std::any_of(wall_state.begin(),
                   wall_state.end(),
                   [](const unsigned char state) { return state != free; });
+    // The change on any rank (the solver's decisions must agree).
+    unsigned int change = 0;
     if (old_slot_state != slot_state || old_wall_state != wall_state)
-      return Change::discrete;
-    if (old_slip_directions != slip_directions ||
-        old_wall_directions != wall_slip_directions)
-      return Change::continuous;
-    return Change::none;
+      change = static_cast<unsigned int>(Change::discrete);
+    else if (old_slip_directions != slip_directions ||
+             old_wall_directions != wall_slip_directions)
+      change = static_cast<unsigned int>(Change::continuous);
+    return static_cast<Change>(Utilities::MPI::max(change, communicator()));
   }
 
 
@@ -379,7 +382,7 @@ namespace grainmpm
                               VectorType                 &projected,
                               std::vector<unsigned char> *node_in_contact) const
   {
-    projected = velocities;
+    copy_slot_vector(velocities, projected);
     return apply_projection(projected,
                             ReferenceMode::from_vector,
                             node_in_contact);
@@ -503,6 +506,7 @@ namespace grainmpm
                        nullptr) > 0 ||
       !wall_slots.empty();
     theta_velocities(work_projected, work_theta);
+    work_theta.update_ghost_values();
 
     // Internal forces from the time-centred stress and volume (eqs. 12-13),
     // on raw pointers and local copies of theta and dt: stores into the
@@ -581,8 +585,11 @@ namespace grainmpm
           }
       }
 
+    work_forces.compress(VectorOperation::add);
+    work_theta.zero_out_ghost_values();
     if (inverted)
       {
+        // NaN on this rank makes every rank's norm NaN.
         residual = std::numeric_limits<double>::quiet_NaN();
         return;
       }
@@ -692,7 +699,7 @@ namespace grainmpm
               direction.local_element(k) = 1.;
               any                        = true;
             }
-        if (!any)
+        if (Utilities::MPI::max(any ? 1U : 0U, communicator()) == 0)
           continue;
         const double eps = step(velocities, direction);
         perturbed        = velocities;

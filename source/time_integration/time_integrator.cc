@@ -23,6 +23,34 @@ namespace grainmpm
 
 
 
+  void
+  StepStatistics::reduce(const MPI_Comm communicator)
+  {
+    if (Utilities::MPI::n_mpi_processes(communicator) == 1)
+      return;
+    double sums[7] = {static_cast<double>(n_contact_nodes),
+                      static_cast<double>(n_removed),
+                      static_cast<double>(n_held_at_walls),
+                      transfer_energy_change,
+                      plastic_work,
+                      friction_work,
+                      boundary_work};
+    Utilities::MPI::sum(ArrayView<const double>(sums, 7),
+                        communicator,
+                        ArrayView<double>(sums, 7));
+    n_contact_nodes        = static_cast<unsigned int>(sums[0]);
+    n_removed              = static_cast<types::particle_index>(sums[1]);
+    n_held_at_walls        = static_cast<types::particle_index>(sums[2]);
+    transfer_energy_change = sums[3];
+    plastic_work           = sums[4];
+    friction_work          = sums[5];
+    boundary_work          = sums[6];
+    max_speed              = Utilities::MPI::max(max_speed, communicator);
+    sorted = Utilities::MPI::max(sorted ? 1U : 0U, communicator) > 0;
+  }
+
+
+
   template <int dim>
   double
   largest_wave_speed(
@@ -101,9 +129,7 @@ namespace grainmpm
     const double                     time)
   {
     cache.reinit(grid, particle_handler, field_of_grain);
-    layout.reinit(cache,
-                  grid.n_nodes(),
-                  grid.get_triangulation().get_communicator());
+    layout.reinit(cache, grid);
     node_in_contact.assign(grid.n_nodes(), 0);
     particles_to_grid(particle_handler, time);
     contact.compute_normals(layout, mass_gradients, normals);
@@ -118,7 +144,8 @@ namespace grainmpm
     StepStatistics                  &statistics)
   {
     // Positions are final: drop particles that left through open faces,
-    // and sort only if some particle changed cells.
+    // and sort only if some particle (on any rank) changed cells; sorting
+    // also sends particles that left this rank's cells to their new owner.
     statistics.n_removed = particles_to_remove.size();
     if (!particles_to_remove.empty())
       {
@@ -126,6 +153,7 @@ namespace grainmpm
         particles_to_remove.clear();
         statistics.sorted = true;
       }
+    statistics.reduce(grid.get_triangulation().get_communicator());
     if (statistics.sorted)
       particle_handler.sort_particles_into_subdomains_and_cells();
   }
@@ -167,6 +195,10 @@ namespace grainmpm
           }
         ++p;
       });
+    // Sums at ghost slots go to their owners.
+    masses.compress(VectorOperation::add);
+    momenta.compress(VectorOperation::add);
+    mass_gradients.compress(VectorOperation::add);
 
     velocities_from_momenta(velocities_p2g);
     prescribe_rigid_velocities(velocities_p2g, time);
@@ -178,6 +210,8 @@ namespace grainmpm
   void
   TimeIntegrator<dim>::velocities_from_momenta(VectorType &velocities) const
   {
+    // Owned slots; ghost slots get their values from the owner when a
+    // particle loop needs them.
     layout.reinit_vector(velocities, dim);
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
       {
@@ -284,12 +318,18 @@ namespace grainmpm
     Vector<double>        prescribed(dim);
     double                max_speed_square        = 0.;
     double                particle_kinetic_change = 0.;
+    std::string           error;
+    velocities_new.update_ghost_values();
+    velocities_p2g.update_ghost_values();
+    position_velocities.update_ghost_values();
 
     std::size_t p = 0;
     for_each_particle(
       grid, particle_handler, [&](const auto &, auto &particle) {
         const unsigned int offset = p * per_particle;
         ++p;
+        if (!error.empty())
+          return;
         auto               properties   = particle->get_properties();
         const unsigned int grain        = Layout::get_grain(properties);
         const Point<dim>   old_position = particle->get_location();
@@ -383,7 +423,8 @@ namespace grainmpm
                       << ". Enlarge the grid (Background grid/Lower corner, "
                          "Upper corner) or make that face open (Background "
                          "grid/Boundary conditions).";
-              throw InputError("", message.str());
+              error = message.str();
+              return;
             }
 
         // Stay in the cell if possible: then no sort is needed.
@@ -400,6 +441,7 @@ namespace grainmpm
         else
           statistics.sorted = true;
       });
+    throw_on_all_ranks(error, grid.get_triangulation().get_communicator());
     statistics.max_speed = std::sqrt(max_speed_square);
 
     double grid_kinetic_change = 0.;

@@ -4,6 +4,10 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/transfer/grain_field_layout.h>
 
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+
 namespace grainmpm
 {
   namespace
@@ -18,14 +22,46 @@ namespace grainmpm
 
   template <int dim>
   void
-  GrainFieldLayout<dim>::reinit(TransferCache<dim> &cache,
-                                const unsigned int  n_nodes,
-                                const MPI_Comm      communicator)
+  GrainFieldLayout<dim>::reinit(TransferCache<dim>        &cache,
+                                const BackgroundGrid<dim> &grid)
   {
     constexpr unsigned int capacity = max_fields_per_node<dim>;
     constexpr unsigned int per_particle =
       TransferCache<dim>::nodes_per_particle;
-    mpi_communicator = communicator;
+    using Message              = std::vector<types::global_dof_index>;
+    const unsigned int n_nodes = grid.n_nodes();
+    n_owned_nodes              = grid.n_owned_nodes();
+    mpi_communicator           = grid.get_triangulation().get_communicator();
+    const Utilities::MPI::Partitioner &nodes = *grid.node_partitioner();
+
+    // The position of @p field in the list of @p node, appended if new;
+    // capacity if the list is full.
+    bool       overflow    = false;
+    const auto find_or_add = [&](const unsigned int node,
+                                 const unsigned int field) {
+      unsigned int *list  = &node_field_scratch[std::size_t(node) * capacity];
+      unsigned int &count = node_count_scratch[node];
+      unsigned int  k     = 0;
+      while (k < count && list[k] != field)
+        ++k;
+      if (k == count)
+        {
+          if (count == capacity)
+            {
+              overflow = true;
+              return 0U;
+            }
+          list[count++] = field;
+        }
+      return k;
+    };
+    const auto check_overflow = [&]() {
+      if (Utilities::MPI::max(overflow ? 1U : 0U, mpi_communicator) > 0)
+        throw InputError("Grains",
+                         "more than " + std::to_string(capacity) +
+                           " grains meet at one grid node; the grains are too "
+                           "small for the grid. Refine the background grid.");
+    };
 
     // Pass 1: for each node, the list of fields touching it; remember the
     // position of each (particle, vertex) pair in its node's list.
@@ -33,58 +69,174 @@ namespace grainmpm
     node_field_scratch.resize(std::size_t(n_nodes) * capacity);
     const std::size_t n_particles = cache.n_particles();
     for (std::size_t p = 0; p < n_particles; ++p)
-      {
-        const unsigned int field = cache.fields[p];
-        for (unsigned int v = 0; v < per_particle; ++v)
-          {
-            const unsigned int node = cache.nodes[p * per_particle + v];
-            unsigned int      *list =
-              &node_field_scratch[std::size_t(node) * capacity];
-            unsigned int &count = node_count_scratch[node];
-            unsigned int  k     = 0;
-            while (k < count && list[k] != field)
-              ++k;
-            if (k == count)
-              {
-                if (count == capacity)
-                  throw InputError(
-                    "Grains",
-                    "more than " + std::to_string(capacity) +
-                      " grains meet at one grid node; the grains are too "
-                      "small for the grid. Refine the background grid.");
-                list[count++] = field;
-              }
-            cache.slots[p * per_particle + v] = k;
-          }
-      }
+      for (unsigned int v = 0; v < per_particle; ++v)
+        cache.slots[p * per_particle + v] =
+          find_or_add(cache.nodes[p * per_particle + v], cache.fields[p]);
 
-    // Pass 2: number the slots node by node.
+    // Pass 2: tell the owners of the ghost nodes which fields this rank has
+    // there ([node, count, fields...] per node); the owners add them.
+    std::map<unsigned int, Message> requests;
+    {
+      unsigned int ghost = n_owned_nodes;
+      for (const auto &[rank, n_ghosts] : nodes.ghost_targets())
+        for (unsigned int i = 0; i < n_ghosts; ++i, ++ghost)
+          if (node_count_scratch[ghost] > 0)
+            {
+              Message &message = requests[rank];
+              message.push_back(grid.node_global_index(ghost));
+              message.push_back(node_count_scratch[ghost]);
+              for (unsigned int k = 0; k < node_count_scratch[ghost]; ++k)
+                message.push_back(
+                  node_field_scratch[std::size_t(ghost) * capacity + k]);
+            }
+    }
+    const std::map<unsigned int, Message> received =
+      Utilities::MPI::some_to_some(mpi_communicator, requests);
+    for (const auto &[rank, message] : received)
+      for (std::size_t i = 0; i < message.size(); i += 2 + message[i + 1])
+        {
+          const unsigned int node = nodes.global_to_local(message[i]);
+          for (unsigned int k = 0; k < message[i + 1]; ++k)
+            find_or_add(node, message[i + 2 + k]);
+        }
+    check_overflow();
+
+    // Pass 3: number the owned slots node by node.
     node_slot_offsets.resize(n_nodes + 1);
     node_slot_offsets[0] = 0;
     contact_node_list.clear();
-    for (unsigned int node = 0; node < n_nodes; ++node)
+    for (unsigned int node = 0; node < n_owned_nodes; ++node)
       {
         node_slot_offsets[node + 1] =
           node_slot_offsets[node] + node_count_scratch[node];
         if (node_count_scratch[node] > 1)
           contact_node_list.push_back(node);
       }
-    const unsigned int n_slots_total = node_slot_offsets[n_nodes];
-    slot_nodes.resize(n_slots_total);
-    slot_fields.resize(n_slots_total);
+    n_owned_slots                   = node_slot_offsets[n_owned_nodes];
+    types::global_dof_index n_owned = n_owned_slots;
+    first_slot                      = 0;
+    MPI_Exscan(&n_owned,
+               &first_slot,
+               1,
+               Utilities::MPI::mpi_type_id_for_type<types::global_dof_index>,
+               MPI_SUM,
+               mpi_communicator);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      first_slot = 0;
+
+    // Pass 4: the owners answer with the global numbers of the requested
+    // slots, in the order asked.
+    std::map<unsigned int, Message> answers;
+    for (const auto &[rank, message] : received)
+      {
+        Message &answer = answers[rank];
+        for (std::size_t i = 0; i < message.size(); i += 2 + message[i + 1])
+          {
+            const unsigned int node = nodes.global_to_local(message[i]);
+            for (unsigned int k = 0; k < message[i + 1]; ++k)
+              answer.push_back(first_slot + node_slot_offsets[node] +
+                               find_or_add(node, message[i + 2 + k]));
+          }
+      }
+    const std::map<unsigned int, Message> replies =
+      Utilities::MPI::some_to_some(mpi_communicator, answers);
+
+    // Pass 5: the ghost slots, node by node (ghost nodes are in the order of
+    // their global DoF, so of their owner and the owner's node numbering),
+    // each node's in the order of their global numbers: then the local
+    // ghost slots are in the order of their global numbers, which is the
+    // order of a vector partitioner's ghost entries. ghost_positions maps
+    // a field's place in a ghost node's list to its place among the
+    // node's slots.
+    const unsigned int        n_ghost_nodes = n_nodes - n_owned_nodes;
+    std::vector<unsigned int> ghost_positions(std::size_t(n_ghost_nodes) *
+                                              capacity);
+    ghost_slot_numbers.clear();
+    {
+      std::vector<std::pair<types::global_dof_index, unsigned int>> order;
+      unsigned int ghost = n_owned_nodes;
+      for (const auto &[rank, n_ghosts] : nodes.ghost_targets())
+        {
+          const auto  reply    = replies.find(rank);
+          std::size_t position = 0;
+          for (unsigned int i = 0; i < n_ghosts; ++i, ++ghost)
+            {
+              const unsigned int count     = node_count_scratch[ghost];
+              node_slot_offsets[ghost + 1] = node_slot_offsets[ghost] + count;
+              if (count == 0)
+                continue;
+              Assert(reply != replies.end() &&
+                       position + count <= reply->second.size(),
+                     ExcInternalError());
+              order.clear();
+              for (unsigned int k = 0; k < count; ++k)
+                order.emplace_back(reply->second[position++], k);
+              std::sort(order.begin(), order.end());
+              for (unsigned int j = 0; j < count; ++j)
+                {
+                  ghost_positions[std::size_t(ghost - n_owned_nodes) *
+                                    capacity +
+                                  order[j].second] = j;
+                  AssertThrow(ghost_slot_numbers.empty() ||
+                                order[j].first > ghost_slot_numbers.back(),
+                              ExcInternalError());
+                  ghost_slot_numbers.push_back(order[j].first);
+                }
+            }
+        }
+    }
+
+    const unsigned int n_local = node_slot_offsets[n_nodes];
+    slot_nodes.resize(n_local);
+    slot_fields.resize(n_local);
     for (unsigned int node = 0; node < n_nodes; ++node)
       for (unsigned int k = 0; k < node_count_scratch[node]; ++k)
         {
-          slot_nodes[node_slot_offsets[node] + k] = node;
-          slot_fields[node_slot_offsets[node] + k] =
+          const unsigned int j =
+            node < n_owned_nodes ?
+              k :
+              ghost_positions[std::size_t(node - n_owned_nodes) * capacity + k];
+          slot_nodes[node_slot_offsets[node] + j] = node;
+          slot_fields[node_slot_offsets[node] + j] =
             node_field_scratch[std::size_t(node) * capacity + k];
         }
 
-    // Pass 3: local position -> slot number.
+    // Pass 6: local position -> slot number.
     for (std::size_t p = 0; p < n_particles; ++p)
       for (unsigned int v = 0; v < per_particle; ++v)
-        cache.slots[p * per_particle + v] +=
-          node_slot_offsets[cache.nodes[p * per_particle + v]];
+        {
+          const unsigned int node = cache.nodes[p * per_particle + v];
+          unsigned int      &slot = cache.slots[p * per_particle + v];
+          slot =
+            node_slot_offsets[node] +
+            (node < n_owned_nodes ?
+               slot :
+               ghost_positions[std::size_t(node - n_owned_nodes) * capacity +
+                               slot]);
+        }
+
+    // The vector partitioners with 1 and dim numbers per slot, built here
+    // by all ranks together (their construction communicates).
+    partitioners.clear();
+    const types::global_dof_index n_total =
+      Utilities::MPI::sum(n_owned, mpi_communicator);
+    for (const unsigned int components : {1U, static_cast<unsigned int>(dim)})
+      {
+        IndexSet owned(n_total * components);
+        owned.add_range(first_slot * components,
+                        (first_slot + n_owned) * components);
+        IndexSet                             ghosts(n_total * components);
+        std::vector<types::global_dof_index> indices;
+        indices.reserve(ghost_slot_numbers.size() * components);
+        for (const types::global_dof_index slot : ghost_slot_numbers)
+          for (unsigned int d = 0; d < components; ++d)
+            indices.push_back(slot * components + d);
+        ghosts.add_indices(indices.begin(), indices.end());
+        partitioners[components] =
+          std::make_shared<Utilities::MPI::Partitioner>(owned,
+                                                        ghosts,
+                                                        mpi_communicator);
+      }
   }
 
 
@@ -95,26 +247,10 @@ namespace grainmpm
     LinearAlgebra::distributed::Vector<double> &vector,
     const unsigned int                          components) const
   {
-    // Each rank owns the slots of its nodes. Ghost slots (slots at ghost
-    // nodes owned by another rank) arrive with the MPI version.
-    const types::global_dof_index n_local =
-      types::global_dof_index(n_slots()) * components;
-    if (vector.locally_owned_size() != n_local)
-      {
-        IndexSet owned(Utilities::MPI::sum(n_local, mpi_communicator));
-        types::global_dof_index first = 0;
-        MPI_Exscan(
-          &n_local,
-          &first,
-          1,
-          Utilities::MPI::mpi_type_id_for_type<types::global_dof_index>,
-          MPI_SUM,
-          mpi_communicator);
-        if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-          first = 0;
-        owned.add_range(first, first + n_local);
-        vector.reinit(owned, mpi_communicator);
-      }
+    const auto partitioner = partitioners.find(components);
+    Assert(partitioner != partitioners.end(), ExcNotImplemented());
+    if (vector.get_partitioner() != partitioner->second)
+      vector.reinit(partitioner->second);
     else
       vector = 0.;
   }

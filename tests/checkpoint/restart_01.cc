@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Checkpoint/restart (subsection Checkpoint): a run writes a checkpoint
+// Checkpoint/restart (subsection Checkpoint), on one and on two MPI ranks
+// (the same output): a run writes a checkpoint
 // every N steps; a second run resumed from one of them in the same output
 // directory cuts energy.csv and grains.csv back to the checkpoint and
 // continues. The files at the end must be byte-for-byte those of the
@@ -53,17 +54,21 @@ check(const std::string &name,
       const unsigned int resume_step)
 {
   const std::string directory = "results-" + name;
-  std::filesystem::remove_all(directory);
-  {
-    std::ofstream prm(name + ".prm");
-    prm << "include " << GRAINMPM_SOURCE_DIR << "/prm/" << shipped_case
-        << ".prm\n"
-        << extra << "subsection Output\n  set Output directory = " << directory
-        << "\n  set Test mode = true\n  set Output interval = 0.1\n"
-        << "  set Write particles = false\n  set Write grid = false\nend\n"
-        << "subsection Checkpoint\n  set Steps between checkpoints = "
-        << interval << "\n  set Checkpoints kept = 3\nend\n";
-  }
+  const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  if (root)
+    {
+      std::filesystem::remove_all(directory);
+      std::ofstream prm(name + ".prm");
+      prm << "include " << GRAINMPM_SOURCE_DIR << "/prm/" << shipped_case
+          << ".prm\n"
+          << extra
+          << "subsection Output\n  set Output directory = " << directory
+          << "\n  set Test mode = true\n  set Output interval = 0.1\n"
+          << "  set Write particles = false\n  set Write grid = false\nend\n"
+          << "subsection Checkpoint\n  set Steps between checkpoints = "
+          << interval << "\n  set Checkpoints kept = 3\nend\n";
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
   grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
   const std::string energy = contents(directory + "/energy.csv");
   const std::string grains = contents(directory + "/grains.csv");
@@ -74,18 +79,20 @@ check(const std::string &name,
       ++n_checkpoints;
 
   // A killed run's half-written checkpoint.
-  std::filesystem::create_directories(directory + "/checkpoint-999999.tmp");
-  std::ofstream(directory + "/checkpoint-999999.tmp/state") << "garbage";
-
+  MPI_Barrier(MPI_COMM_WORLD);
   std::ostringstream checkpoint;
   checkpoint << directory << "/checkpoint-" << std::setw(6) << std::setfill('0')
              << resume_step;
-  {
-    std::ofstream prm(name + "_resumed.prm");
-    prm << "include " << name << ".prm\n"
-        << "subsection Checkpoint\n  set Resume from = " << checkpoint.str()
-        << "\nend\n";
-  }
+  if (root)
+    {
+      std::filesystem::create_directories(directory + "/checkpoint-999999.tmp");
+      std::ofstream(directory + "/checkpoint-999999.tmp/state") << "garbage";
+      std::ofstream prm(name + "_resumed.prm");
+      prm << "include " << name << ".prm\n"
+          << "subsection Checkpoint\n  set Resume from = " << checkpoint.str()
+          << "\nend\n";
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
   grainmpm::run<2>(name + "_resumed.prm", MPI_COMM_WORLD);
   unsigned int n_after = 0;
   for (const auto &entry : std::filesystem::directory_iterator(directory))
@@ -113,7 +120,7 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  initlog();
+  initlog_on_root();
   check("disks", "two_disks_implicit", "", 4, 28);
   check("grain",
         "single_grain_rebound_explicit",

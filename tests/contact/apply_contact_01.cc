@@ -58,7 +58,7 @@ test()
   TransferCache<dim> cache;
   cache.reinit(grid, particle_handler, {0, 1});
   GrainFieldLayout<dim> layout;
-  layout.reinit(cache, grid.n_nodes(), MPI_COMM_WORLD);
+  layout.reinit(cache, grid);
 
   // P2G of mass, momentum and mass gradient.
   VectorType masses, velocities, mass_gradients;

@@ -52,7 +52,7 @@ test()
   TransferCache<dim> cache;
   cache.reinit(grid, particle_handler, {0, 1});
   GrainFieldLayout<dim> layout;
-  layout.reinit(cache, grid.n_nodes(), MPI_COMM_WORLD);
+  layout.reinit(cache, grid);
 
   std::vector<double> masses;
   for_each_particle(

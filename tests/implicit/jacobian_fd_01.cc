@@ -46,7 +46,7 @@ main(int argc, char **argv)
   TransferCache<2>    cache;
   GrainFieldLayout<2> layout;
   cache.reinit(*fixture.grid, *fixture.particle_handler, {0});
-  layout.reinit(cache, fixture.grid->n_nodes(), MPI_COMM_WORLD);
+  layout.reinit(cache, *fixture.grid);
   AssertDimension(layout.n_slots() * 2, V.size());
   const VectorType &masses = stepper.get_masses();
 

@@ -55,7 +55,7 @@ check_analytic_diagonal()
   TransferCache<2>    cache;
   GrainFieldLayout<2> layout;
   cache.reinit(*fixture.grid, *fixture.particle_handler, {0});
-  layout.reinit(cache, fixture.grid->n_nodes(), MPI_COMM_WORLD);
+  layout.reinit(cache, *fixture.grid);
   VectorType stiffness(V);
   stiffness     = 0.;
   std::size_t p = 0;

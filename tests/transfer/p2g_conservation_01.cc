@@ -49,7 +49,7 @@ check_layout(const BackgroundGrid<dim>             &grid,
   TransferCache<dim> cache;
   cache.reinit(grid, particle_handler, field_of_grain);
   GrainFieldLayout<dim> layout;
-  layout.reinit(cache, grid.n_nodes(), MPI_COMM_WORLD);
+  layout.reinit(cache, grid);
 
   // Particle data in cache order, read from the particles themselves.
   std::vector<unsigned int>   grains;

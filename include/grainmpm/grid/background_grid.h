@@ -7,6 +7,7 @@
 #include <grainmpm/base/parameters.h>
 
 #include <deal.II/base/index_set.h>
+#include <deal.II/base/partitioner.h>
 
 #include <deal.II/distributed/tria.h>
 
@@ -14,6 +15,8 @@
 
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/mapping_cartesian.h>
+
+#include <deal.II/particles/particle_handler.h>
 
 #include <vector>
 
@@ -28,8 +31,12 @@ namespace grainmpm
    * flat tables the transfers need (DESIGN.md section 9): the node numbers
    * of each active cell, and for each node the box faces it lies on.
    *
-   * Nodes are numbered by the local index of their DoF among the locally
-   * relevant DoFs, so that all per-node arrays are plain vectors.
+   * Nodes are numbered like the entries of a ghosted
+   * `LinearAlgebra::distributed::Vector` on the DoFs: the locally owned
+   * nodes first (0 .. n_owned_nodes() - 1, in the order of their global
+   * DoF index), then the ghost nodes (locally relevant, owned by another
+   * rank) in the order of their global DoF index. All per-node arrays are
+   * plain vectors; on one rank the local number is the global DoF index.
    */
   template <int dim>
   class BackgroundGrid
@@ -61,9 +68,34 @@ namespace grainmpm
     const Mapping<dim> &
     get_mapping() const;
 
-    /** Number of locally relevant nodes. */
+    /** Number of locally relevant nodes (owned and ghost). */
     unsigned int
     n_nodes() const;
+
+    /** Number of locally owned nodes: the local nodes 0 .. this - 1. */
+    unsigned int
+    n_owned_nodes() const;
+
+    /** The global DoF index of local node @p node. */
+    types::global_dof_index
+    node_global_index(const unsigned int node) const;
+
+    /**
+     * The partitioner of the node DoFs (owned, ghosts = locally relevant),
+     * whose local numbering is the node numbering above.
+     */
+    const std::shared_ptr<const Utilities::MPI::Partitioner> &
+    node_partitioner() const;
+
+    /**
+     * Repartition the cells so that every rank carries about the same
+     * weight, where a cell weighs 1 plus @p particle_weight times its
+     * number of material points in @p particle_handler, which moves with
+     * its cells. The node tables are rebuilt.
+     */
+    void
+    repartition(Particles::ParticleHandler<dim> &particle_handler,
+                const unsigned int               particle_weight);
 
     /**
      * The local node numbers of the vertices of the active cell with index
@@ -83,7 +115,7 @@ namespace grainmpm
     unsigned int
     node_faces(const unsigned int node) const;
 
-    /** The local nodes on the boundary of the box. */
+    /** The locally owned nodes on the boundary of the box. */
     const std::vector<unsigned int> &
     boundary_nodes() const;
 
@@ -105,10 +137,6 @@ namespace grainmpm
     const BoundaryCondition &
     boundary_condition(const unsigned int face) const;
 
-    /** The locally relevant DoFs (= nodes). */
-    const IndexSet &
-    locally_relevant_nodes() const;
-
   private:
     const BackgroundGridParameters<dim>      &parameters;
     parallel::distributed::Triangulation<dim> triangulation;
@@ -119,15 +147,16 @@ namespace grainmpm
     void
     setup_node_tables();
 
-    FE_Q<dim>                 fe;
-    DoFHandler<dim>           dof_handler;
-    MappingCartesian<dim>     mapping;
-    IndexSet                  locally_relevant_dofs;
-    Tensor<1, dim>            cell_extent;
-    std::vector<unsigned int> cell_node_table;
-    std::vector<Point<dim>>   node_positions;
-    std::vector<unsigned int> node_face_masks;
-    std::vector<unsigned int> boundary_node_list;
+    FE_Q<dim>                                          fe;
+    DoFHandler<dim>                                    dof_handler;
+    MappingCartesian<dim>                              mapping;
+    std::shared_ptr<const Utilities::MPI::Partitioner> partitioner;
+    Tensor<1, dim>                                     cell_extent;
+    std::vector<unsigned int>                          cell_node_table;
+    std::vector<Point<dim>>                            node_positions;
+    std::vector<unsigned int>                          node_face_masks;
+    std::vector<unsigned int>                          boundary_node_list;
+    std::vector<types::global_dof_index>               node_global_indices;
   };
 
 

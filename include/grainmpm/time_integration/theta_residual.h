@@ -280,6 +280,13 @@ namespace grainmpm
     void
     apply_wall_entry(const unsigned int w, Tensor<1, dim> &velocity) const;
 
+    /** The communicator of the grid. */
+    MPI_Comm
+    communicator() const
+    {
+      return grid.get_triangulation().get_communicator();
+    }
+
     /** Stress and history update of particle @p p for v^theta. */
     void
     compute_particle(const std::size_t      p,

@@ -95,6 +95,15 @@ namespace grainmpm
     double boundary_work = 0.;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
+
+    /**
+     * Add up (largest speed: maximum; sorted: or) what each rank counted
+     * of its particles and slots: contact nodes, removed and held points,
+     * the transfer energy change and the plastic, friction and boundary
+     * work. Collective.
+     */
+    void
+    reduce(const MPI_Comm communicator);
   };
 
 

@@ -11,6 +11,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -28,29 +29,47 @@ namespace grainmpm
    * `components` numbers per slot (slot * components + d).
    *
    * A contact node is a node with two or more slots.
+   *
+   * In parallel (DESIGN.md section 8), a slot belongs to the rank that owns
+   * its node. A rank whose particles touch a node owned by another rank
+   * (a ghost node) holds ghost slots there: reinit() sends the fields it
+   * has at its ghost nodes to their owners, which add them to their slots,
+   * so the owner's slots at a node are the union over all ranks. Local slot
+   * numbers are those of a ghosted `LinearAlgebra::distributed::Vector`:
+   * owned slots 0 .. n_slots() - 1 node by node, then the ghost slots in
+   * the order of their global numbers. Particle-to-grid sums go into owned
+   * and ghost slots and are completed by `compress(VectorOperation::add)`;
+   * everything that works on slots (velocities, contact, walls) does so on
+   * the owned ones; grid-to-particle reads need `update_ghost_values()`.
    */
   template <int dim>
   class GrainFieldLayout
   {
   public:
     /**
-     * Build the slots from the (node, field) pairs of @p cache and write the
-     * slot of every (particle, vertex) pair into `cache.slots`.
-     * @p n_nodes is the number of local nodes.
+     * Build the slots from the (node, field) pairs of @p cache on the nodes
+     * of @p grid, exchanging those at ghost nodes with their owners, and
+     * write the local slot of every (particle, vertex) pair into
+     * `cache.slots`. Collective.
      */
     void
-    reinit(TransferCache<dim> &cache,
-           const unsigned int  n_nodes,
-           const MPI_Comm      communicator);
+    reinit(TransferCache<dim> &cache, const BackgroundGrid<dim> &grid);
 
-    /** Number of slots. */
+    /** Number of locally owned slots. */
     unsigned int
     n_slots() const
+    {
+      return n_owned_slots;
+    }
+
+    /** Number of owned and ghost slots. */
+    unsigned int
+    n_local_slots() const
     {
       return slot_nodes.size();
     }
 
-    /** Node of slot @p slot. */
+    /** Local node of (owned or ghost) slot @p slot. */
     unsigned int
     node(const unsigned int slot) const
     {
@@ -78,21 +97,24 @@ namespace grainmpm
       return node_slot_offsets[node + 1];
     }
 
-    /** Number of nodes the layout was built for. */
+    /** Number of locally owned nodes: the nodes whose slots are owned. */
     unsigned int
     n_nodes() const
     {
-      return node_slot_offsets.size() - 1;
+      return n_owned_nodes;
     }
 
-    /** Nodes with two or more slots. */
+    /** Owned nodes with two or more slots. */
     const std::vector<unsigned int> &
     contact_nodes() const
     {
       return contact_node_list;
     }
 
-    /** Size @p vector for @p components numbers per slot, zeroed. */
+    /**
+     * Size @p vector for @p components numbers per slot (owned and ghost
+     * slots), zeroed, ghosts included.
+     */
     void
     reinit_vector(LinearAlgebra::distributed::Vector<double> &vector,
                   const unsigned int                          components) const;
@@ -102,12 +124,37 @@ namespace grainmpm
     std::vector<unsigned int> slot_fields;
     std::vector<unsigned int> node_slot_offsets;
     std::vector<unsigned int> contact_node_list;
+    unsigned int              n_owned_slots    = 0;
+    unsigned int              n_owned_nodes    = 0;
     MPI_Comm                  mpi_communicator = MPI_COMM_SELF;
+    /** Global number of the first owned slot, and of every ghost slot. */
+    types::global_dof_index              first_slot = 0;
+    std::vector<types::global_dof_index> ghost_slot_numbers;
+    /** The vector partitioners of the current layout, by components. */
+    mutable std::map<unsigned int,
+                     std::shared_ptr<const Utilities::MPI::Partitioner>>
+      partitioners;
 
     /** Scratch: fields seen at each node during reinit (fixed capacity). */
     std::vector<unsigned int> node_field_scratch;
     std::vector<unsigned int> node_count_scratch;
   };
+
+
+
+  /**
+   * @p destination = @p source, taking the partitioner of @p source. Slot
+   * layouts change every step; deal.II's assignment would keep an old
+   * partitioner with the same owned range (and other ghosts).
+   */
+  inline void
+  copy_slot_vector(const LinearAlgebra::distributed::Vector<double> &source,
+                   LinearAlgebra::distributed::Vector<double> &destination)
+  {
+    if (destination.get_partitioner() != source.get_partitioner())
+      destination.reinit(source.get_partitioner());
+    destination = source;
+  }
 
 
 
