@@ -103,7 +103,10 @@ main(int argc, char *argv[])
     }
   catch (const InputError &error)
     {
-      std::cerr << "\ngrainmpm: error: " << error.what() << std::endl;
+      // Input errors are seen by every rank alike (the parameter file) or
+      // made so (throw_on_all_ranks()): rank 0 reports.
+      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::cerr << "\ngrainmpm: error: " << error.what() << std::endl;
       return 1;
     }
   catch (const dealii::ExceptionBase &exception)
@@ -130,6 +133,8 @@ main(int argc, char *argv[])
           if (slash != std::string::npos)
             text.erase(open + 9, slash + 1);
         }
+      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+        return 1;
       if (!where.empty())
         std::cerr << "\ngrainmpm: error in the input, in subsection " << where
                   << ":\n"
@@ -140,7 +145,10 @@ main(int argc, char *argv[])
     }
   catch (const std::exception &exception)
     {
+      // Anything else may have happened on one rank only: stop them all.
       std::cerr << "\ngrainmpm: error: " << exception.what() << std::endl;
+      if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        MPI_Abort(MPI_COMM_WORLD, 1);
       return 1;
     }
   return 0;

@@ -118,6 +118,7 @@ namespace grainmpm
       unsigned int grain;
     };
     std::vector<Candidate>    candidates;
+    std::string               overlap; // seen on this rank's cells
     std::vector<unsigned int> owner(std::size_t(n_total_cells) * per_cell,
                                     numbers::invalid_unsigned_int);
     for (unsigned int g = 0; g < n_grains; ++g)
@@ -161,12 +162,14 @@ namespace grainmpm
                       continue;
                     unsigned int &claimed =
                       owner[std::size_t(cell_index) * per_cell + q];
-                    if (claimed != numbers::invalid_unsigned_int)
-                      throw InputError(grains[g].source,
-                                       "the grain overlaps " +
-                                         grains[claimed].source +
-                                         ": grains must not overlap at the "
-                                         "start of a run.");
+                    if (claimed != numbers::invalid_unsigned_int &&
+                        overlap.empty())
+                      overlap = InputError(grains[g].source,
+                                           "the grain overlaps " +
+                                             grains[claimed].source +
+                                             ": grains must not overlap at "
+                                             "the start of a run.")
+                                  .what();
                     claimed = g;
                     candidates.push_back({cell_index, q, g});
                   }
@@ -175,7 +178,8 @@ namespace grainmpm
 
     // Globally unique particle ids: this rank's candidates follow those of
     // the lower ranks.
-    const MPI_Comm communicator   = grid.get_triangulation().get_communicator();
+    const MPI_Comm communicator = grid.get_triangulation().get_communicator();
+    throw_on_all_ranks(overlap, communicator);
     types::particle_index n_local = candidates.size(), first_id = 0;
     MPI_Exscan(&n_local,
                &first_id,

@@ -3,11 +3,15 @@
 
 // Test driver for runs that must fail: runs grainmpm on the given .prm and
 // prints its exit code; succeeds only if grainmpm exited with code 1, so a
-// test checks both the message (in .output) and the exit code.
+// test checks both the message (in .output) and the exit code. A line
+// "# MPI ranks: N" in the .prm runs grainmpm on N ranks through mpiexec;
+// Open MPI's own report of the failed job (between lines of dashes, with
+// process ids) is left out of the output.
 
 #include <sys/wait.h>
 
-#include <cstdlib>
+#include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -16,10 +20,42 @@ main(int argc, char *argv[])
 {
   if (argc != 2)
     return 2;
-  const std::string command =
-    std::string(GRAINMPM_EXECUTABLE) + " " + argv[1] + " 2>&1";
+  unsigned int n_ranks = 1;
+  {
+    std::ifstream     prm(argv[1]);
+    const std::string marker = "# MPI ranks: ";
+    for (std::string line; std::getline(prm, line);)
+      if (line.rfind(marker, 0) == 0)
+        n_ranks = std::stoi(line.substr(marker.size()));
+  }
+  std::string command = std::string(GRAINMPM_EXECUTABLE) + " " + argv[1];
+  if (n_ranks > 1)
+    command = std::string(GRAINMPM_MPIEXEC) + " -n " + std::to_string(n_ranks) +
+              " --allow-run-as-root --oversubscribe " + command;
+  command += " 2>&1";
   std::cout << std::flush;
-  const int status    = std::system(command.c_str());
+
+  FILE *pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr)
+    return 2;
+  std::string line;
+  bool        in_mpi_report = false;
+  for (int c = std::fgetc(pipe);; c = std::fgetc(pipe))
+    {
+      if (c != EOF && c != '\n')
+        {
+          line += static_cast<char>(c);
+          continue;
+        }
+      if (line.rfind("------", 0) == 0)
+        in_mpi_report = !in_mpi_report;
+      else if (!in_mpi_report && !(c == EOF && line.empty()))
+        std::cout << line << '\n';
+      line.clear();
+      if (c == EOF)
+        break;
+    }
+  const int status    = pclose(pipe);
   const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::cout << "exit code: " << exit_code << std::endl;
   return exit_code == 1 ? 0 : 1;
