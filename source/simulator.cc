@@ -7,6 +7,7 @@
 #include <grainmpm/simulator.h>
 
 #include <deal.II/base/discrete_time.h>
+#include <deal.II/base/utilities.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
@@ -133,6 +134,10 @@ namespace grainmpm
       TimerOutput::Scope  scope(timer, "setup");
       GrainGenerator<dim> generator(parameters);
       grains = generator.generate(grid, particle_handler);
+      // The points were inserted grain by grain: store them cell by cell
+      // (the handler sorts its property memory in the order of its cells),
+      // as the transfers visit them.
+      particle_handler.sort_particles_into_subdomains_and_cells();
       if (!resume.empty())
         {
           // The material points of the checkpoint replace the new ones,
@@ -517,6 +522,19 @@ namespace grainmpm
     else
       pcout << "  |momentum(end) - momentum(0)| = " << momentum_change;
     pcout << std::endl;
+
+    // Peak resident memory (machine-dependent, so not in test mode).
+    if (!parameters.output.test_mode)
+      {
+        Utilities::System::MemoryStats memory;
+        Utilities::System::get_memory_stats(memory);
+        const double peak = memory.VmHWM / 1024.; // MiB
+        pcout << "  peak memory: " << Utilities::MPI::sum(peak, communicator)
+              << " MiB summed over "
+              << Utilities::MPI::n_mpi_processes(communicator)
+              << " ranks, largest rank "
+              << Utilities::MPI::max(peak, communicator) << " MiB" << std::endl;
+      }
   }
 
 

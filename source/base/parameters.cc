@@ -97,7 +97,11 @@ namespace grainmpm
                       "Number of Q1 cells in each direction, one integer per "
                       "direction. Cells should be square (cubes): the time "
                       "step and the contact normals use the smallest cell "
-                      "size. Dimensionless.",
+                      "size. The grid is a coarse mesh, which p4est keeps on "
+                      "every MPI rank, refined globally: for large parallel "
+                      "runs choose numbers that share a factor 2^k (for "
+                      "example 704, 592 = 44, 37 times 2^4), so that the "
+                      "coarse mesh is small. Dimensionless.",
                       Patterns::List(Patterns::Integer(1, 1 << 16), dim, dim));
     prm.add_parameter(
       "Boundary conditions",
