@@ -196,7 +196,8 @@ namespace grainmpm
     Particles::ParticleHandler<dim> &particle_handler,
     const unsigned int               particle_weight)
   {
-    // The weight signal as in step-68: the cost of a cell is its particles.
+    // The weight signal as in step-68: a cell costs 1 plus particle_weight
+    // per material point.
     const auto connection = triangulation.signals.weight.connect(
       [&particle_handler,
        particle_weight](const typename Triangulation<dim>::cell_iterator &cell,
@@ -204,7 +205,7 @@ namespace grainmpm
         if (status != Triangulation<dim>::CELL_PERSIST)
           return 0U;
         return static_cast<unsigned int>(
-          particle_weight * particle_handler.n_particles_in_cell(cell));
+          1 + particle_weight * particle_handler.n_particles_in_cell(cell));
       });
     particle_handler.prepare_for_coarsening_and_refinement();
     triangulation.repartition();
