@@ -202,7 +202,7 @@ namespace grainmpm
     // Particles that the handler loses (should not happen: G2P checks the
     // box first) are counted, never silently dropped.
     particle_handler.signals.particle_lost.connect(
-      [this](const auto &, const auto &) { ++n_removed; });
+      [this](const auto &, const auto &) { ++n_lost; });
 
     double max_speed = 0.;
     for (const auto &particle : particle_handler)
@@ -455,7 +455,8 @@ namespace grainmpm
     pcout << "\nfinished: " << step_number()
           << " steps to t = " << time.get_current_time() << "\n"
           << "  steps with contact:       " << n_contact_steps << "\n"
-          << "  particles removed:        " << n_removed << "\n"
+          << "  particles removed:        "
+          << n_removed + Utilities::MPI::sum(n_lost, communicator) << "\n"
           << "  material points left:     "
           << particle_handler.n_global_particles() << "\n";
     if (n_held_at_walls > 0)

@@ -99,8 +99,10 @@ namespace grainmpm
     std::unique_ptr<EnergyHistory<dim>>                  energy_history;
     std::unique_ptr<GrainHistory<dim>>                   grain_history;
 
-    unsigned int          n_outputs       = 0;
-    types::particle_index n_removed       = 0;
+    unsigned int          n_outputs = 0;
+    types::particle_index n_removed = 0;
+    /** Points the handler lost on this rank (counted, never expected). */
+    types::particle_index n_lost          = 0;
     types::particle_index n_held_at_walls = 0;
     EnergySummary<dim>    initial_energy;
     EnergySummary<dim>    current_energy;

@@ -42,8 +42,9 @@ namespace grainmpm
    * projection and the wall conditions with the contact status frozen by
    * freeze_status(). The projected end velocity is
    * Pi_theta(V) = (v^theta - (1 - theta) v^n) / theta. Slots of rigid
-   * grains have R = V - (prescribed velocity at t + dt); slots without
-   * mass R = V - v^n.
+   * grains have R = V - (prescribed velocity at t + dt); slots with less
+   * than 1e-6 of the largest particle mass (m_min, reference/physics.md
+   * section 8.5) R = V - v^n - dt g.
    *
    * The constraints act on v^theta, the velocity that moves the particles
    * and strains them, not on v^{n+1}: then no grain moves into another or
