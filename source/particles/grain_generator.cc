@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/mpi_tools.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/particles/material_point_layout.h>
 
@@ -180,15 +181,8 @@ namespace grainmpm
     // the lower ranks.
     const MPI_Comm communicator = grid.get_triangulation().get_communicator();
     throw_on_all_ranks(overlap, communicator);
-    types::particle_index n_local = candidates.size(), first_id = 0;
-    MPI_Exscan(&n_local,
-               &first_id,
-               1,
-               Utilities::MPI::mpi_type_id_for_type<types::particle_index>,
-               MPI_SUM,
-               communicator);
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      first_id = 0;
+    const types::particle_index first_id = sum_over_lower_ranks(
+      static_cast<types::particle_index>(candidates.size()), communicator);
 
     std::vector<double> properties(Layout::n_properties, 0.);
     Vector<double>      velocity(dim);

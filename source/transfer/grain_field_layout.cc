@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/mpi_tools.h>
 #include <grainmpm/transfer/grain_field_layout.h>
 
 #include <deal.II/base/mpi.h>
@@ -112,17 +113,9 @@ namespace grainmpm
         if (node_count_scratch[node] > 1)
           contact_node_list.push_back(node);
       }
-    n_owned_slots                   = node_slot_offsets[n_owned_nodes];
-    types::global_dof_index n_owned = n_owned_slots;
-    first_slot                      = 0;
-    MPI_Exscan(&n_owned,
-               &first_slot,
-               1,
-               Utilities::MPI::mpi_type_id_for_type<types::global_dof_index>,
-               MPI_SUM,
-               mpi_communicator);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      first_slot = 0;
+    n_owned_slots                         = node_slot_offsets[n_owned_nodes];
+    const types::global_dof_index n_owned = n_owned_slots;
+    first_slot = sum_over_lower_ranks(n_owned, mpi_communicator);
 
     // Pass 4: the owners answer with the global numbers of the requested
     // slots, in the order asked.
