@@ -115,7 +115,8 @@ namespace grainmpm
       }
     n_owned_slots                         = node_slot_offsets[n_owned_nodes];
     const types::global_dof_index n_owned = n_owned_slots;
-    first_slot = sum_over_lower_ranks(n_owned, mpi_communicator);
+    const types::global_dof_index first_slot =
+      sum_over_lower_ranks(n_owned, mpi_communicator);
 
     // Pass 4: the owners answer with the global numbers of the requested
     // slots, in the order asked.
@@ -144,7 +145,7 @@ namespace grainmpm
     const unsigned int        n_ghost_nodes = n_nodes - n_owned_nodes;
     std::vector<unsigned int> ghost_positions(std::size_t(n_ghost_nodes) *
                                               capacity);
-    ghost_slot_numbers.clear();
+    std::vector<types::global_dof_index> ghost_slot_numbers;
     {
       std::vector<std::pair<types::global_dof_index, unsigned int>> order;
       unsigned int ghost = n_owned_nodes;

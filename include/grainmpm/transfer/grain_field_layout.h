@@ -127,12 +127,8 @@ namespace grainmpm
     unsigned int              n_owned_slots    = 0;
     unsigned int              n_owned_nodes    = 0;
     MPI_Comm                  mpi_communicator = MPI_COMM_SELF;
-    /** Global number of the first owned slot, and of every ghost slot. */
-    types::global_dof_index              first_slot = 0;
-    std::vector<types::global_dof_index> ghost_slot_numbers;
     /** The vector partitioners of the current layout, by components. */
-    mutable std::map<unsigned int,
-                     std::shared_ptr<const Utilities::MPI::Partitioner>>
+    std::map<unsigned int, std::shared_ptr<const Utilities::MPI::Partitioner>>
       partitioners;
 
     /** Scratch: fields seen at each node during reinit (fixed capacity). */
