@@ -3,17 +3,108 @@
 
 #include <grainmpm/contact/grain_contact.h>
 
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace grainmpm
 {
+  namespace
+  {
+    // Passes of projection and momentum restoration at nodes where three or
+    // more deformable grains meet.
+    constexpr unsigned int max_projection_passes = 1000;
+
+
+
+    /**
+     * The partner velocity v_ref of a node from its velocities: the first
+     * rigid field's (infinite mass) or the centre of mass of the
+     * deformable fields (Cummins & Brackbill eq. 6). Also returns the
+     * deformable fields' momentum, mass and number. False if the node has
+     * neither a rigid field nor deformable mass.
+     */
+    template <int dim>
+    bool
+    node_reference(const unsigned int    n_fields,
+                   const double         *masses,
+                   const bool           *rigid,
+                   const Tensor<1, dim> *velocities,
+                   Tensor<1, dim>       &reference,
+                   Tensor<1, dim>       &momentum,
+                   double               &total_mass,
+                   int                  &rigid_field,
+                   unsigned int         &n_deformable)
+    {
+      momentum     = Tensor<1, dim>();
+      total_mass   = 0.;
+      rigid_field  = -1;
+      n_deformable = 0;
+      for (unsigned int k = 0; k < n_fields; ++k)
+        if (rigid[k])
+          {
+            if (rigid_field < 0)
+              rigid_field = k;
+          }
+        else
+          {
+            total_mass += masses[k];
+            momentum += masses[k] * velocities[k];
+            ++n_deformable;
+          }
+      reference = Tensor<1, dim>();
+      if (rigid_field >= 0)
+        reference = velocities[rigid_field];
+      else if (total_mass > 0.)
+        reference = momentum / total_mass;
+      else
+        return false;
+      return true;
+    }
+
+
+
+    /**
+     * Shift all fields with mass by the change of the node's momentum from
+     * @p momentum_before over the node mass @p total_mass (no rigid field
+     * at the node); returns the size of the shift.
+     */
+    template <int dim>
+    double
+    restore_momentum(const unsigned int    n_fields,
+                     const double         *masses,
+                     const Tensor<1, dim> &momentum_before,
+                     const double          total_mass,
+                     Tensor<1, dim>       *velocities)
+    {
+      Tensor<1, dim> momentum_after;
+      for (unsigned int k = 0; k < n_fields; ++k)
+        momentum_after += masses[k] * velocities[k];
+      const Tensor<1, dim> shift =
+        (momentum_after - momentum_before) / total_mass;
+      for (unsigned int k = 0; k < n_fields; ++k)
+        if (masses[k] > 0.)
+          velocities[k] -= shift;
+      return shift.norm();
+    }
+  } // namespace
+
+
+
   template <int dim>
-  GrainContact<dim>::GrainContact(const ContactParameters   &parameters,
-                                  const BackgroundGrid<dim> &grid,
-                                  const std::vector<bool>   &field_is_rigid)
+  GrainContact<dim>::GrainContact(const ContactParameters           &parameters,
+                                  const BackgroundGrid<dim>         &grid,
+                                  const std::vector<GrainInfo<dim>> &grains,
+                                  const std::vector<bool> &field_is_rigid)
     : parameters(parameters)
     , grid(grid)
+    , grains(grains)
     , field_is_rigid(field_is_rigid)
+    , has_rigid_fields(std::find(field_is_rigid.begin(),
+                                 field_is_rigid.end(),
+                                 true) != field_is_rigid.end())
   {}
 
 
@@ -47,12 +138,73 @@ namespace grainmpm
 
 
 
-  namespace
+  template <int dim>
+  void
+  GrainContact<dim>::prescribe_rigid_velocities(
+    const GrainFieldLayout<dim> &layout,
+    VectorType                  &velocities,
+    const double                 time) const
   {
-    // Passes of projection and momentum restoration at nodes where three or
-    // more deformable grains meet.
-    constexpr unsigned int max_projection_passes = 1000;
-  } // namespace
+    if (!has_rigid_fields)
+      return;
+    Vector<double> value(dim);
+    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
+      {
+        const unsigned int field = layout.field(slot);
+        if (!field_is_rigid[field])
+          continue;
+        FunctionParser<dim> &function = *grains[field].prescribed_velocity;
+        function.set_time(time);
+        function.vector_value(grid.node_position(layout.node(slot)), value);
+        for (unsigned int d = 0; d < dim; ++d)
+          velocities.local_element(slot * dim + d) = value[d];
+      }
+  }
+
+
+
+  template <int dim>
+  ContactState
+  GrainContact<dim>::classify(const Tensor<1, dim> &relative,
+                              const Tensor<1, dim> &normal,
+                              const double          mu,
+                              Tensor<1, dim>       &slip_direction)
+  {
+    // D of eq. (5): approaching iff relative . n > 0; then stick if
+    // mu D >= |v_t| (mu' = min(mu, C/D) = C/D removes all relative
+    // tangential velocity), else slip by mu D.
+    slip_direction        = Tensor<1, dim>();
+    const double approach = relative * normal;
+    if (!(approach > 0.))
+      return ContactState::free;
+    const Tensor<1, dim> tangential = relative - approach * normal;
+    const double         slip       = tangential.norm();
+    if (mu > 0. && mu * approach >= slip)
+      return ContactState::sticking;
+    if (mu > 0.)
+      slip_direction = tangential / slip;
+    return ContactState::sliding;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainContact<dim>::apply_state(const ContactState    state,
+                                 const Tensor<1, dim> &normal,
+                                 const double          mu,
+                                 const Tensor<1, dim> &slip_direction,
+                                 const Tensor<1, dim> &reference,
+                                 Tensor<1, dim>       &velocity)
+  {
+    if (state == ContactState::sticking)
+      velocity = reference;
+    else if (state == ContactState::sliding)
+      {
+        const double approach = (velocity - reference) * normal;
+        velocity -= approach * normal + (mu * approach) * slip_direction;
+      }
+  }
 
 
 
@@ -64,108 +216,98 @@ namespace grainmpm
                                   const Tensor<1, dim> *normals,
                                   Tensor<1, dim>       *velocities,
                                   const ContactModel    model,
-                                  const double          friction_coefficient)
+                                  const double          friction_coefficient,
+                                  const double          mass_threshold,
+                                  ContactState         *states,
+                                  Tensor<1, dim>       *slip_directions,
+                                  Tensor<1, dim>       *reference_out)
   {
-    // The reference velocity: a rigid field has infinite mass, otherwise
-    // the centre of mass of the node (eq. 6).
-    Tensor<1, dim> reference_velocity, momentum_before;
-    double         total_mass   = 0.;
-    int            rigid_field  = -1;
-    unsigned int   n_deformable = 0;
-    for (unsigned int k = 0; k < n_fields; ++k)
-      if (rigid[k])
+    if (states != nullptr)
+      for (unsigned int k = 0; k < n_fields; ++k)
         {
-          if (rigid_field < 0)
-            rigid_field = k;
+          states[k]          = ContactState::free;
+          slip_directions[k] = Tensor<1, dim>();
         }
-      else
-        {
-          total_mass += masses[k];
-          momentum_before += masses[k] * velocities[k];
-          ++n_deformable;
-        }
-    if (rigid_field >= 0)
-      reference_velocity = velocities[rigid_field];
-    else if (total_mass > 0.)
-      reference_velocity = momentum_before / total_mass;
-    else
+    Tensor<1, dim> reference, momentum_before;
+    double         total_mass;
+    int            rigid_field;
+    unsigned int   n_deformable;
+    const bool     has_reference = node_reference(n_fields,
+                                              masses,
+                                              rigid,
+                                              velocities,
+                                              reference,
+                                              momentum_before,
+                                              total_mass,
+                                              rigid_field,
+                                              n_deformable);
+    if (reference_out != nullptr)
+      *reference_out = reference;
+    if (!has_reference)
       return false;
+    const double mu =
+      (model == ContactModel::coulomb_friction) ? friction_coefficient : 0.;
 
-    // One pass of eq. (5) over the fields; returns whether one was corrected.
-    const auto project_once = [&]() {
+    // One pass of eq. (5) over the fields, deciding each field's state;
+    // returns whether one was corrected.
+    const auto decide_and_project = [&]() {
       bool corrected_in_pass = false;
       for (unsigned int k = 0; k < n_fields; ++k)
         {
-          if (rigid[k] || !(masses[k] > 0.))
+          if (rigid[k] || !(masses[k] > mass_threshold))
             continue;
-          if (model == ContactModel::none)
+          ContactState   state = ContactState::sticking;
+          Tensor<1, dim> slip_direction;
+          // Without contact (a single deformable field), deformable
+          // material sticks to a rigid body.
+          if (model != ContactModel::none)
             {
-              // Single field: deformable material sticks to a rigid body.
-              velocities[k]     = reference_velocity;
-              corrected_in_pass = true;
-              continue;
+              if (normals[k].norm_square() == 0.)
+                continue;
+              state = classify(velocities[k] - reference,
+                               normals[k],
+                               mu,
+                               slip_direction);
+              if (state == ContactState::free)
+                continue; // separating: free
             }
-          const Tensor<1, dim> &normal = normals[k];
-          if (normal.norm_square() == 0.)
-            continue;
-          const Tensor<1, dim> relative = velocities[k] - reference_velocity;
-          const double         approach = relative * normal; // D of eq. (5)
-          if (!(approach > 0.))
-            continue; // separating: free
-          Tensor<1, dim> correction = approach * normal;
-          if (model == ContactModel::coulomb_friction)
+          apply_state(
+            state, normals[k], mu, slip_direction, reference, velocities[k]);
+          if (states != nullptr)
             {
-              const Tensor<1, dim> tangential = relative - approach * normal;
-              const double         slip       = tangential.norm(); // C
-              if (slip > 0.)
-                {
-                  // mu' = min(mu, C/D): stick removes all relative
-                  // tangential velocity, slip reduces it by mu D.
-                  const double effective =
-                    std::min(friction_coefficient, slip / approach);
-                  correction += (effective * approach / slip) * tangential;
-                }
+              states[k]          = state;
+              slip_directions[k] = slip_direction;
             }
-          velocities[k] -= correction;
           corrected_in_pass = true;
         }
       return corrected_in_pass;
     };
 
-    bool corrected = project_once();
-
+    const bool corrected = decide_and_project();
     // Two deformable fields (antiparallel normals) or a rigid partner: one
     // pass conserves momentum, respectively is all there is. Three or more
     // deformable fields: the normals cannot all be pairwise antiparallel and
     // the pass changes the node's momentum. Remove that change by a common
-    // velocity shift and project again, until no field approaches and the
-    // momentum is restored (the state "all fields at v_cm" satisfies both,
-    // so the alternation has a fixed point; it converges in a few passes).
+    // velocity shift and decide and project again, until no field
+    // approaches and the momentum is restored (the state "all fields at
+    // v_cm" satisfies both, so the alternation has a fixed point; it
+    // converges in a few passes). End on exact momentum.
     if (corrected && rigid_field < 0 && n_deformable > 2)
       {
         double velocity_scale = 0.;
         for (unsigned int k = 0; k < n_fields; ++k)
           velocity_scale =
-            std::max(velocity_scale,
-                     (velocities[k] - reference_velocity).norm());
-        // Shift all fields by the momentum change over the node mass;
-        // return the size of the shift.
-        const auto restore_momentum = [&]() {
-          Tensor<1, dim> momentum_after;
-          for (unsigned int k = 0; k < n_fields; ++k)
-            momentum_after += masses[k] * velocities[k];
-          const Tensor<1, dim> shift =
-            (momentum_after - momentum_before) / total_mass;
-          for (unsigned int k = 0; k < n_fields; ++k)
-            if (masses[k] > 0.)
-              velocities[k] -= shift;
-          return shift.norm();
-        };
+            std::max(velocity_scale, (velocities[k] - reference).norm());
+        // Only the first pass's decisions are recorded.
+        states = nullptr;
         for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
-          if (restore_momentum() <= 1e-14 * velocity_scale || !project_once())
+          if (restore_momentum(
+                n_fields, masses, momentum_before, total_mass, velocities) <=
+                1e-14 * velocity_scale ||
+              !decide_and_project())
             break;
-        // End on exact momentum: a last shift of round-off size.
-        restore_momentum();
+        restore_momentum(
+          n_fields, masses, momentum_before, total_mass, velocities);
       }
     return corrected;
   }
@@ -173,16 +315,68 @@ namespace grainmpm
 
 
   template <int dim>
+  void
+  GrainContact<dim>::project_node_frozen(const unsigned int    n_fields,
+                                         const double         *masses,
+                                         const bool           *rigid,
+                                         const Tensor<1, dim> *normals,
+                                         const ContactState   *states,
+                                         const Tensor<1, dim> *slip_directions,
+                                         const Reference       reference_mode,
+                                         const Tensor<1, dim> &frozen_reference,
+                                         const double    friction_coefficient,
+                                         Tensor<1, dim> *velocities)
+  {
+    Tensor<1, dim> reference, momentum_before;
+    double         total_mass;
+    int            rigid_field;
+    unsigned int   n_deformable;
+    node_reference(n_fields,
+                   masses,
+                   rigid,
+                   velocities,
+                   reference,
+                   momentum_before,
+                   total_mass,
+                   rigid_field,
+                   n_deformable);
+    if (reference_mode == Reference::frozen)
+      reference = frozen_reference;
+    else if (reference_mode == Reference::zero)
+      reference = Tensor<1, dim>();
+
+    for (unsigned int k = 0; k < n_fields; ++k)
+      apply_state(states[k],
+                  normals[k],
+                  friction_coefficient,
+                  slip_directions[k],
+                  reference,
+                  velocities[k]);
+    // Three or more deformable fields: one momentum-restoring shift. The
+    // map stays linear in the velocities; alternating it with the frozen
+    // projection until the shift vanishes converges slowly without
+    // friction and diverges with it (tests/contact/frozen_multi_grain_01).
+    if (reference_mode == Reference::from_velocities && rigid_field < 0 &&
+        n_deformable > 2)
+      restore_momentum(
+        n_fields, masses, momentum_before, total_mass, velocities);
+  }
+
+
+
+  template <int dim>
   unsigned int
-  GrainContact<dim>::apply_contact(
-    const GrainFieldLayout<dim> &layout,
-    const VectorType            &masses,
-    const VectorType            &normals,
-    VectorType                  &velocities,
-    std::vector<unsigned char>  &node_in_contact) const
+  GrainContact<dim>::apply_contact(const GrainFieldLayout<dim> &layout,
+                                   const VectorType            &masses,
+                                   const VectorType            &normals,
+                                   VectorType                  &velocities,
+                                   std::vector<unsigned char>  *node_in_contact,
+                                   const double                 mass_threshold,
+                                   ContactStatus<dim>          *status) const
   {
     std::vector<double>         node_masses;
-    std::vector<Tensor<1, dim>> node_normals, node_velocities;
+    std::vector<Tensor<1, dim>> node_normals, node_velocities, node_slips;
+    std::vector<ContactState>   node_states;
     // Flags for the largest node, allocated once (std::vector<bool> has no
     // data()).
     unsigned int max_fields = 0;
@@ -199,6 +393,8 @@ namespace grainmpm
         node_masses.resize(n);
         node_normals.resize(n);
         node_velocities.resize(n);
+        node_states.resize(n);
+        node_slips.resize(n);
         for (unsigned int k = 0; k < n; ++k)
           {
             node_masses[k]     = masses.local_element(begin + k);
@@ -206,21 +402,64 @@ namespace grainmpm
             node_normals[k]    = get_slot_vector<dim>(normals, begin + k);
             node_velocities[k] = get_slot_vector<dim>(velocities, begin + k);
           }
-        if (project_node(n,
-                         node_masses.data(),
-                         rigid_flags.get(),
-                         node_normals.data(),
-                         node_velocities.data(),
-                         parameters.model,
-                         parameters.friction_coefficient))
+        Tensor<1, dim> reference;
+        const bool     corrected =
+          project_node(n,
+                       node_masses.data(),
+                       rigid_flags.get(),
+                       node_normals.data(),
+                       node_velocities.data(),
+                       parameters.model,
+                       parameters.friction_coefficient,
+                       mass_threshold,
+                       status != nullptr ? node_states.data() : nullptr,
+                       node_slips.data(),
+                       &reference);
+        if (status != nullptr)
+          for (unsigned int k = 0; k < n; ++k)
+            {
+              status->slot_state[begin + k]      = node_states[k];
+              status->slip_directions[begin + k] = node_slips[k];
+              status->references[begin + k]      = reference;
+            }
+        if (corrected)
           {
             for (unsigned int k = 0; k < n; ++k)
               set_slot_vector<dim>(node_velocities[k], velocities, begin + k);
-            node_in_contact[node] = 1;
+            if (node_in_contact != nullptr)
+              (*node_in_contact)[node] = 1;
             ++n_corrected;
           }
       }
     return n_corrected;
+  }
+
+
+
+  template <int dim>
+  ContactState
+  GrainContact<dim>::classify_wall(const BoundaryCondition &condition,
+                                   const Tensor<1, dim>    &normal,
+                                   const Tensor<1, dim>    &velocity,
+                                   Tensor<1, dim>          &slip_direction)
+  {
+    slip_direction = Tensor<1, dim>();
+    switch (condition.type)
+      {
+        case BoundaryType::open:
+          return ContactState::free;
+        case BoundaryType::no_slip:
+          return ContactState::sticking;
+        case BoundaryType::free_slip:
+        case BoundaryType::friction:
+          // Unilateral: only motion into the wall is removed, so grains
+          // can rebound and leave.
+          return classify(velocity,
+                          normal,
+                          wall_friction(condition),
+                          slip_direction);
+      }
+    return ContactState::free;
   }
 
 
@@ -231,32 +470,15 @@ namespace grainmpm
                                 const Tensor<1, dim>    &normal,
                                 Tensor<1, dim>          &velocity)
   {
-    switch (condition.type)
-      {
-        case BoundaryType::open:
-          return;
-        case BoundaryType::no_slip:
-          velocity = 0.;
-          return;
-        case BoundaryType::free_slip:
-        case BoundaryType::friction:
-          {
-            // Unilateral: only motion into the wall is removed, so grains
-            // can rebound and leave (reference/physics.md section 2.5).
-            const double approach = velocity * normal;
-            if (!(approach > 0.))
-              return;
-            Tensor<1, dim> tangential = velocity - approach * normal;
-            velocity                  = tangential;
-            const double slip         = tangential.norm();
-            if (condition.type == BoundaryType::friction && slip > 0.)
-              velocity -=
-                (std::min(condition.friction_coefficient, slip / approach) *
-                 approach / slip) *
-                tangential;
-            return;
-          }
-      }
+    Tensor<1, dim>     slip_direction;
+    const ContactState state =
+      classify_wall(condition, normal, velocity, slip_direction);
+    apply_state(state,
+                normal,
+                wall_friction(condition),
+                slip_direction,
+                Tensor<1, dim>(),
+                velocity);
   }
 
 
@@ -278,14 +500,209 @@ namespace grainmpm
             Tensor<1, dim> velocity = get_slot_vector<dim>(velocities, s);
             for (unsigned int face = 0; face < 2 * dim; ++face)
               if (faces & (1U << face))
-                {
-                  apply_wall(grid.boundary_condition(face),
-                             face_normal(face),
-                             velocity);
-                }
+                apply_wall(grid.boundary_condition(face),
+                           face_normal(face),
+                           velocity);
             set_slot_vector<dim>(velocity, velocities, s);
           }
       }
+  }
+
+
+
+  template <int dim>
+  void
+  GrainContact<dim>::reinit_status(const GrainFieldLayout<dim> &layout,
+                                   ContactStatus<dim>          &status) const
+  {
+    const unsigned int n_slots = layout.n_slots();
+    status.slot_state.assign(n_slots, ContactState::free);
+    status.slip_directions.assign(n_slots, Tensor<1, dim>());
+    status.references.assign(n_slots, Tensor<1, dim>());
+    status.wall_slots.clear();
+    status.wall_faces.clear();
+    for (const unsigned int node : grid.boundary_nodes())
+      {
+        const unsigned int faces = grid.node_faces(node);
+        for (unsigned int s = layout.node_slots_begin(node);
+             s < layout.node_slots_end(node);
+             ++s)
+          if (!field_is_rigid[layout.field(s)])
+            for (unsigned int face = 0; face < 2 * dim; ++face)
+              if ((faces & (1U << face)) &&
+                  grid.boundary_condition(face).type != BoundaryType::open)
+                {
+                  status.wall_slots.push_back(s);
+                  status.wall_faces.push_back(face);
+                }
+      }
+    status.wall_state.assign(status.wall_slots.size(), ContactState::free);
+    status.wall_slip_directions.assign(status.wall_slots.size(),
+                                       Tensor<1, dim>());
+    status.any_active = false;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainContact<dim>::freeze(const GrainFieldLayout<dim> &layout,
+                            const VectorType            &masses,
+                            const VectorType            &normals,
+                            const VectorType            &velocities,
+                            const double                 mass_threshold,
+                            ContactStatus<dim>          &status) const
+  {
+    // Contact: the decisions of the contact law at these velocities.
+    std::fill(status.slot_state.begin(),
+              status.slot_state.end(),
+              ContactState::free);
+    VectorType projected(velocities);
+    apply_contact(
+      layout, masses, normals, projected, nullptr, mass_threshold, &status);
+
+    // Walls see the velocities after contact, face after face.
+    for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
+      {
+        const unsigned int       s = status.wall_slots[w];
+        const BoundaryCondition &condition =
+          grid.boundary_condition(status.wall_faces[w]);
+        const Tensor<1, dim> normal   = face_normal(status.wall_faces[w]);
+        Tensor<1, dim>       velocity = get_slot_vector<dim>(projected, s);
+        status.wall_state[w]          = classify_wall(condition,
+                                             normal,
+                                             velocity,
+                                             status.wall_slip_directions[w]);
+        apply_state(status.wall_state[w],
+                    normal,
+                    wall_friction(condition),
+                    status.wall_slip_directions[w],
+                    Tensor<1, dim>(),
+                    velocity);
+        set_slot_vector<dim>(velocity, projected, s);
+      }
+    const auto active = [](const ContactState state) {
+      return state != ContactState::free;
+    };
+    status.any_active =
+      std::any_of(status.slot_state.begin(), status.slot_state.end(), active) ||
+      std::any_of(status.wall_state.begin(), status.wall_state.end(), active);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  GrainContact<dim>::apply_frozen(const GrainFieldLayout<dim> &layout,
+                                  const VectorType            &masses,
+                                  const VectorType            &normals,
+                                  const ContactStatus<dim>    &status,
+                                  const Reference              reference,
+                                  VectorType                  &velocities,
+                                  std::vector<unsigned char>  *node_flags) const
+  {
+    if (!status.any_active)
+      return 0;
+    const double                mu = friction_coefficient();
+    std::vector<double>         node_masses;
+    std::vector<Tensor<1, dim>> node_normals, node_velocities;
+    unsigned int                max_fields = 0;
+    for (const unsigned int node : layout.contact_nodes())
+      max_fields =
+        std::max(max_fields,
+                 layout.node_slots_end(node) - layout.node_slots_begin(node));
+    const std::unique_ptr<bool[]> rigid_flags(new bool[max_fields]);
+    unsigned int                  n_active = 0;
+    for (const unsigned int node : layout.contact_nodes())
+      {
+        const unsigned int begin = layout.node_slots_begin(node);
+        const unsigned int n     = layout.node_slots_end(node) - begin;
+        bool               any   = false;
+        for (unsigned int k = 0; k < n; ++k)
+          any = any || (status.slot_state[begin + k] != ContactState::free);
+        if (!any)
+          continue;
+        ++n_active;
+        if (node_flags != nullptr)
+          (*node_flags)[node] = 1;
+        node_masses.resize(n);
+        node_normals.resize(n);
+        node_velocities.resize(n);
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            node_masses[k]     = masses.local_element(begin + k);
+            rigid_flags[k]     = field_is_rigid[layout.field(begin + k)];
+            node_normals[k]    = get_slot_vector<dim>(normals, begin + k);
+            node_velocities[k] = get_slot_vector<dim>(velocities, begin + k);
+          }
+        project_node_frozen(n,
+                            node_masses.data(),
+                            rigid_flags.get(),
+                            node_normals.data(),
+                            status.slot_state.data() + begin,
+                            status.slip_directions.data() + begin,
+                            reference,
+                            status.references[begin],
+                            mu,
+                            node_velocities.data());
+        for (unsigned int k = 0; k < n; ++k)
+          set_slot_vector<dim>(node_velocities[k], velocities, begin + k);
+      }
+
+    for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
+      if (status.wall_state[w] != ContactState::free)
+        {
+          const unsigned int s        = status.wall_slots[w];
+          Tensor<1, dim>     velocity = get_slot_vector<dim>(velocities, s);
+          apply_state(status.wall_state[w],
+                      face_normal(status.wall_faces[w]),
+                      wall_friction(
+                        grid.boundary_condition(status.wall_faces[w])),
+                      status.wall_slip_directions[w],
+                      Tensor<1, dim>(),
+                      velocity);
+          set_slot_vector<dim>(velocity, velocities, s);
+        }
+    return n_active;
+  }
+
+
+
+  template <int dim>
+  std::pair<double, double>
+  GrainContact<dim>::constraint_work(const GrainFieldLayout<dim> &layout,
+                                     const VectorType            &masses,
+                                     const VectorType            &before,
+                                     const VectorType            &after,
+                                     const VectorType            &rate) const
+  {
+    // Total work of the reactions on the deformable slots, and the part
+    // that rigid partners put in: sum over a node's deformable slots of
+    // the reactions, times the rigid slot's velocity.
+    double total = 0., boundary = 0.;
+    for (unsigned int node = 0; node < layout.n_nodes(); ++node)
+      {
+        const unsigned int begin = layout.node_slots_begin(node);
+        const unsigned int end   = layout.node_slots_end(node);
+        Tensor<1, dim>     reaction;
+        int                rigid_slot = -1;
+        for (unsigned int s = begin; s < end; ++s)
+          {
+            if (field_is_rigid[layout.field(s)])
+              {
+                rigid_slot = static_cast<int>(s);
+                continue;
+              }
+            const Tensor<1, dim> impulse =
+              masses.local_element(s) * (get_slot_vector<dim>(after, s) -
+                                         get_slot_vector<dim>(before, s));
+            total += impulse * get_slot_vector<dim>(rate, s);
+            reaction += impulse;
+          }
+        if (rigid_slot >= 0)
+          boundary += reaction * get_slot_vector<dim>(rate, rigid_slot);
+      }
+    return {boundary - total, boundary};
   }
 
 

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-#include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/implicit_theta.h>
 
 namespace grainmpm
@@ -31,8 +30,10 @@ namespace grainmpm
     const BackgroundGrid<dim>                                  &grid,
     const std::vector<GrainInfo<dim>>                          &grains,
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
-    : TimeIntegrator<dim>(parameters, grid, grains, materials)
-    , residual(parameters.contact, grid, this->field_is_rigid, materials)
+    : parameters(parameters)
+    , transfer(parameters, grid, grains, materials)
+    , contact(parameters.contact, grid, grains, transfer.get_field_is_rigid())
+    , residual(contact, grid, materials)
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
              velocity_scale(parameters, grains, materials))
@@ -48,19 +49,23 @@ namespace grainmpm
                               const bool                       freeze)
   {
     // Frozen at t^n: shape functions, slots, masses, normals; v^n with
-    // contact and walls (reference/physics.md section 4.1).
-    this->begin_step(particle_handler, time);
-    copy_slot_vector(velocities_p2g, velocities_old);
-    apply_constraints(velocities_old);
+    // contact and walls.
+    begin_step(transfer, contact, particle_handler, time, state);
+    const GrainFieldLayout<dim> &layout = transfer.get_layout();
+    copy_slot_vector(state.velocities_p2g, velocities_old);
+    contact.apply_contact(layout,
+                          state.masses,
+                          state.normals,
+                          velocities_old,
+                          &state.node_in_contact);
+    contact.apply_walls(layout, velocities_old);
     copy_slot_vector(velocities_old, rigid_velocities);
-    prescribe_rigid_velocities(rigid_velocities, time + dt);
+    contact.prescribe_rigid_velocities(layout, rigid_velocities, time + dt);
 
-    residual.reinit(cache,
-                    layout,
+    residual.reinit(transfer,
                     particle_handler,
-                    grains,
-                    masses,
-                    normals,
+                    state.masses,
+                    state.normals,
                     velocities_old,
                     rigid_velocities,
                     parameters.physics.gravity,
@@ -70,7 +75,7 @@ namespace grainmpm
     // The first iterate: v^n, rigid slots at their velocity at t + dt.
     copy_slot_vector(velocities_old, unknowns);
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
-      if (field_is_rigid[layout.field(s)])
+      if (transfer.get_field_is_rigid()[layout.field(s)])
         for (unsigned int d = 0; d < dim; ++d)
           unknowns.local_element(s * dim + d) =
             rigid_velocities.local_element(s * dim + d);
@@ -113,16 +118,21 @@ namespace grainmpm
     residual.evaluate(unknowns, final_residual, false, true);
     unknowns -= final_residual;
     statistics.n_contact_nodes =
-      residual.project(unknowns, velocities_new, &node_in_contact);
+      residual.project(unknowns, state.velocities_new, &state.node_in_contact);
     theta_velocities.reinit(unknowns, true);
-    residual.theta_velocities(velocities_new, theta_velocities);
-    this->add_constraint_work(unknowns,
-                              velocities_new,
-                              theta_velocities,
-                              statistics);
+    residual.theta_velocities(state.velocities_new, theta_velocities);
+    const GrainFieldLayout<dim> &layout       = transfer.get_layout();
+    const auto [friction_work, boundary_work] = contact.constraint_work(
+      layout, state.masses, unknowns, state.velocities_new, theta_velocities);
+    statistics.friction_work += friction_work;
+    statistics.boundary_work += boundary_work;
 
     // Grid energies before and after (deformable slots).
-    double kinetic_old = 0., kinetic_new = 0.;
+    const std::vector<bool> &field_is_rigid = transfer.get_field_is_rigid();
+    const VectorType        &masses         = state.masses;
+    const VectorType        &velocities_p2g = state.velocities_p2g;
+    const VectorType        &velocities_new = state.velocities_new;
+    double                   kinetic_old = 0., kinetic_new = 0.;
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       if (!field_is_rigid[layout.field(s)])
         for (unsigned int d = 0; d < dim; ++d)
@@ -137,61 +147,29 @@ namespace grainmpm
           }
     double energies[4] = {kinetic_old, kinetic_new, 0., 0.};
     energies[2]        = residual.old_strain_energy();
-    commit_particle_state(particle_handler,
-                          theta_velocities,
-                          energies[3],
-                          statistics.plastic_work);
+    transfer.update_particle_states(particle_handler,
+                                    theta_velocities,
+                                    dt,
+                                    statistics.plastic_work,
+                                    &energies[3]);
     Utilities::MPI::sum(ArrayView<const double>(energies, 4),
-                        grid.get_triangulation().get_communicator(),
+                        layout.get_communicator(),
                         ArrayView<double>(energies, 4));
     grid_energies = {energies[0] + energies[2], energies[1] + energies[3]};
     statistics.grid_energy_change = grid_energies.second - grid_energies.first;
 
-    this->grid_to_particles(
-      particle_handler, theta_velocities, time, dt, statistics);
-    this->finish_step(particle_handler, statistics);
+    transfer.grid_to_particles(particle_handler,
+                               state.masses,
+                               state.velocities_new,
+                               state.velocities_p2g,
+                               theta_velocities,
+                               time,
+                               dt,
+                               statistics);
+    transfer.finish_step(particle_handler, statistics);
     statistics.residual_evaluations =
       residual.n_residual_evaluations() - evaluations_at_start;
     return statistics;
-  }
-
-
-
-  template <int dim>
-  void
-  ImplicitTheta<dim>::commit_particle_state(
-    Particles::ParticleHandler<dim> &particle_handler,
-    const VectorType                &theta_v,
-    double                          &strain_energy,
-    double                          &plastic_work)
-  {
-    using Layout = MaterialPointLayout<dim>;
-    theta_v.update_ghost_values();
-    std::size_t p = 0;
-    for_each_particle(
-      grid, particle_handler, [&](const auto &, auto &particle) {
-        const std::size_t index = p++;
-        if (!residual.is_deformable(index))
-          return;
-        auto         properties         = particle->get_properties();
-        const double old_plastic_strain = properties[Layout::plastic_strain];
-        SymmetricTensor<2, 3> stress;
-        double                plastic_strain;
-        Tensor<2, dim>        increment;
-        residual.particle_update(
-          index, theta_v, stress, plastic_strain, increment);
-        const double volume = this->store_particle_state(properties,
-                                                         stress,
-                                                         plastic_strain,
-                                                         increment);
-        const ConstitutiveModel<dim> &model =
-          *materials[grains[Layout::get_grain(properties)].material];
-        strain_energy += volume * model.strain_energy_density(stress);
-        plastic_work +=
-          volume *
-          model.plastic_work_density(stress,
-                                     plastic_strain - old_plastic_strain);
-      });
   }
 
 

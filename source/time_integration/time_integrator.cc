@@ -1,56 +1,12 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-#include <grainmpm/base/input_error.h>
-#include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/time_integrator.h>
 
-#include <deal.II/lac/vector.h>
-
 #include <algorithm>
-#include <sstream>
 
 namespace grainmpm
 {
-  namespace
-  {
-    const char *const face_names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
-    const char *const boundary_type_names[4] = {"free slip",
-                                                "no slip",
-                                                "friction",
-                                                "open"};
-  } // namespace
-
-
-
-  void
-  StepStatistics::reduce(const MPI_Comm communicator)
-  {
-    if (Utilities::MPI::n_mpi_processes(communicator) == 1)
-      return;
-    double sums[7] = {static_cast<double>(n_contact_nodes),
-                      static_cast<double>(n_removed),
-                      static_cast<double>(n_held_at_walls),
-                      transfer_energy_change,
-                      plastic_work,
-                      friction_work,
-                      boundary_work};
-    Utilities::MPI::sum(ArrayView<const double>(sums, 7),
-                        communicator,
-                        ArrayView<double>(sums, 7));
-    n_contact_nodes        = static_cast<unsigned int>(sums[0]);
-    n_removed              = static_cast<types::particle_index>(sums[1]);
-    n_held_at_walls        = static_cast<types::particle_index>(sums[2]);
-    transfer_energy_change = sums[3];
-    plastic_work           = sums[4];
-    friction_work          = sums[5];
-    boundary_work          = sums[6];
-    max_speed              = Utilities::MPI::max(max_speed, communicator);
-    sorted = Utilities::MPI::max(sorted ? 1U : 0U, communicator) > 0;
-  }
-
-
-
   template <int dim>
   double
   largest_wave_speed(
@@ -68,402 +24,29 @@ namespace grainmpm
 
 
   template <int dim>
-  double
-  TimeIntegrator<dim>::store_particle_state(const ArrayView<double> &properties,
-                                            const SymmetricTensor<2, 3> &stress,
-                                            const double plastic_strain,
-                                            const Tensor<2, dim> &increment)
-  {
-    using Layout = MaterialPointLayout<dim>;
-    Layout::set_stress(stress, properties);
-    properties[Layout::plastic_strain] = plastic_strain;
-    Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
-    F += increment * F;
-    Layout::set_deformation_gradient(F, properties);
-    properties[Layout::volume] =
-      determinant(F) * properties[Layout::initial_volume];
-    return properties[Layout::volume];
-  }
-
-
-
-  template <int dim>
-  TimeIntegrator<dim>::TimeIntegrator(
-    const Parameters<dim>                                      &parameters,
-    const BackgroundGrid<dim>                                  &grid,
-    const std::vector<GrainInfo<dim>>                          &grains,
-    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
-    : parameters(parameters)
-    , grid(grid)
-    , grains(grains)
-    , materials(materials)
-    , field_of_grain(grains.size())
-    , field_is_rigid(grains.size(), false)
-    , contact(parameters.contact, grid, field_is_rigid)
-  {
-    // Every grain has its own field, except with 'Contact model = none',
-    // where all deformable grains share the field of the first of them.
-    int shared_field = -1;
-    for (unsigned int g = 0; g < grains.size(); ++g)
-      {
-        field_of_grain[g] = g;
-        field_is_rigid[g] = grains[g].rigid;
-        if (parameters.contact.model == ContactModel::none && !grains[g].rigid)
-          {
-            if (shared_field < 0)
-              shared_field = g;
-            field_of_grain[g] = shared_field;
-          }
-      }
-    has_rigid_fields =
-      std::find(field_is_rigid.begin(), field_is_rigid.end(), true) !=
-      field_is_rigid.end();
-  }
-
-
-
-  template <int dim>
   void
-  TimeIntegrator<dim>::begin_step(
-    Particles::ParticleHandler<dim> &particle_handler,
-    const double                     time)
+  begin_step(Transfer<dim>                   &transfer,
+             const GrainContact<dim>         &contact,
+             Particles::ParticleHandler<dim> &particle_handler,
+             const double                     time,
+             GridState<dim>                  &state)
   {
-    cache.reinit(grid, particle_handler, field_of_grain);
-    layout.reinit(cache, grid);
-    node_in_contact.assign(grid.n_nodes(), 0);
-    particles_to_grid(particle_handler, time);
-    contact.compute_normals(layout, mass_gradients, normals);
+    transfer.reinit(particle_handler);
+    const GrainFieldLayout<dim> &layout = transfer.get_layout();
+    state.node_in_contact.assign(layout.n_nodes(), 0);
+    transfer.particles_to_grid(particle_handler,
+                               &state.masses,
+                               state.momenta,
+                               &state.mass_gradients);
+    transfer.velocities_from_momenta(state.masses,
+                                     state.momenta,
+                                     state.velocities_p2g);
+    contact.prescribe_rigid_velocities(layout, state.velocities_p2g, time);
+    contact.compute_normals(layout, state.mass_gradients, state.normals);
   }
 
 
 
-  template <int dim>
-  void
-  TimeIntegrator<dim>::finish_step(
-    Particles::ParticleHandler<dim> &particle_handler,
-    StepStatistics                  &statistics)
-  {
-    // Positions are final: drop particles that left through open faces,
-    // and sort only if some particle (on any rank) changed cells; sorting
-    // also sends particles that left this rank's cells to their new owner.
-    statistics.n_removed = particles_to_remove.size();
-    if (!particles_to_remove.empty())
-      {
-        particle_handler.remove_particles(particles_to_remove);
-        particles_to_remove.clear();
-        statistics.sorted = true;
-      }
-    statistics.reduce(grid.get_triangulation().get_communicator());
-    if (statistics.sorted)
-      particle_handler.sort_particles_into_subdomains_and_cells();
-  }
-
-
-
-  template <int dim>
-  void
-  TimeIntegrator<dim>::particles_to_grid(
-    Particles::ParticleHandler<dim> &particle_handler,
-    const double                     time)
-  {
-    using Layout = MaterialPointLayout<dim>;
-    constexpr unsigned int per_particle =
-      TransferCache<dim>::nodes_per_particle;
-    layout.reinit_vector(masses, 1);
-    layout.reinit_vector(momenta, dim);
-    layout.reinit_vector(mass_gradients, dim);
-
-    std::size_t p = 0;
-    for_each_particle(
-      grid, particle_handler, [&](const auto &, auto &particle) {
-        const auto         properties = particle->get_properties();
-        const double       mass       = properties[Layout::mass];
-        const unsigned int offset     = p * per_particle;
-        for (unsigned int v = 0; v < per_particle; ++v)
-          {
-            const unsigned int    slot     = cache.slots[offset + v];
-            const double          shape    = cache.shape_values[offset + v];
-            const Tensor<1, dim> &gradient = cache.shape_gradients[offset + v];
-            masses.local_element(slot) += mass * shape;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                momenta.local_element(slot * dim + d) +=
-                  mass * shape * properties[Layout::velocity + d];
-                mass_gradients.local_element(slot * dim + d) +=
-                  mass * gradient[d];
-              }
-          }
-        ++p;
-      });
-    // Sums at ghost slots go to their owners.
-    masses.compress(VectorOperation::add);
-    momenta.compress(VectorOperation::add);
-    mass_gradients.compress(VectorOperation::add);
-
-    velocities_from_momenta(velocities_p2g);
-    prescribe_rigid_velocities(velocities_p2g, time);
-  }
-
-
-
-  template <int dim>
-  void
-  TimeIntegrator<dim>::velocities_from_momenta(VectorType &velocities) const
-  {
-    // Owned slots; ghost slots get their values from the owner when a
-    // particle loop needs them.
-    layout.reinit_vector(velocities, dim);
-    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
-      {
-        const double mass = masses.local_element(slot);
-        if (mass > 0.)
-          for (unsigned int d = 0; d < dim; ++d)
-            velocities.local_element(slot * dim + d) =
-              momenta.local_element(slot * dim + d) / mass;
-      }
-  }
-
-
-
-  template <int dim>
-  void
-  TimeIntegrator<dim>::prescribe_rigid_velocities(VectorType  &velocities,
-                                                  const double time) const
-  {
-    if (!has_rigid_fields)
-      return;
-    Vector<double> value(dim);
-    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
-      {
-        const unsigned int field = layout.field(slot);
-        if (!field_is_rigid[field])
-          continue;
-        FunctionParser<dim> &function = *grains[field].prescribed_velocity;
-        function.set_time(time);
-        function.vector_value(grid.node_position(layout.node(slot)), value);
-        for (unsigned int d = 0; d < dim; ++d)
-          velocities.local_element(slot * dim + d) = value[d];
-      }
-  }
-
-
-
-  template <int dim>
-  unsigned int
-  TimeIntegrator<dim>::apply_constraints(VectorType &velocities)
-  {
-    const unsigned int n_contact = contact.apply_contact(
-      layout, masses, normals, velocities, node_in_contact);
-    contact.apply_walls(layout, velocities);
-    return n_contact;
-  }
-
-
-
-  template <int dim>
-  void
-  TimeIntegrator<dim>::add_constraint_work(const VectorType &before,
-                                           const VectorType &after,
-                                           const VectorType &rate,
-                                           StepStatistics   &statistics) const
-  {
-    // Total work of the reactions on the deformable slots, and the part
-    // that rigid partners put in: sum over a node's deformable slots of
-    // the reactions, times the rigid slot's velocity.
-    double total = 0., boundary = 0.;
-    for (unsigned int node = 0; node < layout.n_nodes(); ++node)
-      {
-        const unsigned int begin = layout.node_slots_begin(node);
-        const unsigned int end   = layout.node_slots_end(node);
-        Tensor<1, dim>     reaction;
-        int                rigid_slot = -1;
-        for (unsigned int s = begin; s < end; ++s)
-          {
-            if (field_is_rigid[layout.field(s)])
-              {
-                rigid_slot = static_cast<int>(s);
-                continue;
-              }
-            const Tensor<1, dim> impulse =
-              masses.local_element(s) * (get_slot_vector<dim>(after, s) -
-                                         get_slot_vector<dim>(before, s));
-            total += impulse * get_slot_vector<dim>(rate, s);
-            reaction += impulse;
-          }
-        if (rigid_slot >= 0)
-          boundary += reaction * get_slot_vector<dim>(rate, rigid_slot);
-      }
-    statistics.boundary_work += boundary;
-    statistics.friction_work += boundary - total;
-  }
-
-
-
-  template <int dim>
-  void
-  TimeIntegrator<dim>::grid_to_particles(
-    Particles::ParticleHandler<dim> &particle_handler,
-    const VectorType                &position_velocities,
-    const double                     time,
-    const double                     dt,
-    StepStatistics                  &statistics)
-  {
-    using Layout = MaterialPointLayout<dim>;
-    constexpr unsigned int per_particle =
-      TransferCache<dim>::nodes_per_particle;
-    const double          flip  = parameters.time_stepping.flip_fraction;
-    const Tensor<1, dim> &h     = grid.cell_size();
-    const Point<dim>     &lower = grid.lower_corner();
-    const Point<dim>     &upper = grid.upper_corner();
-    Vector<double>        prescribed(dim);
-    double                max_speed_square        = 0.;
-    double                particle_kinetic_change = 0.;
-    std::string           error;
-    velocities_new.update_ghost_values();
-    velocities_p2g.update_ghost_values();
-    position_velocities.update_ghost_values();
-
-    std::size_t p = 0;
-    for_each_particle(
-      grid, particle_handler, [&](const auto &, auto &particle) {
-        const unsigned int offset = p * per_particle;
-        ++p;
-        if (!error.empty())
-          return;
-        auto               properties   = particle->get_properties();
-        const unsigned int grain        = Layout::get_grain(properties);
-        const Point<dim>   old_position = particle->get_location();
-        Point<dim>         new_position;
-        Tensor<1, dim>     new_velocity;
-
-        if (grains[grain].rigid)
-          {
-            // Rigid grains follow their prescribed velocity (midpoint rule).
-            FunctionParser<dim> &function = *grains[grain].prescribed_velocity;
-            function.set_time(time + 0.5 * dt);
-            function.vector_value(old_position, prescribed);
-            for (unsigned int d = 0; d < dim; ++d)
-              new_position[d] = old_position[d] + dt * prescribed[d];
-            function.set_time(time + dt);
-            function.vector_value(new_position, prescribed);
-            for (unsigned int d = 0; d < dim; ++d)
-              new_velocity[d] = prescribed[d];
-          }
-        else
-          {
-            // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC:
-            // v_p = sum S v^new; x_p += dt sum_i S_ip v_i (v^L explicit,
-            // v^theta implicit).
-            Tensor<1, dim> increment, interpolated, moved;
-            for (unsigned int v = 0; v < per_particle; ++v)
-              {
-                const unsigned int slot  = cache.slots[offset + v];
-                const double       shape = cache.shape_values[offset + v];
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    const double v_new =
-                      velocities_new.local_element(slot * dim + d);
-                    interpolated[d] += shape * v_new;
-                    moved[d] +=
-                      shape * position_velocities.local_element(slot * dim + d);
-                    increment[d] +=
-                      shape *
-                      (v_new - velocities_p2g.local_element(slot * dim + d));
-                  }
-              }
-            const Tensor<1, dim> old_velocity =
-              Layout::get_velocity(properties);
-            new_velocity =
-              flip * (old_velocity + increment) + (1. - flip) * interpolated;
-            new_position = old_position + dt * moved;
-            particle_kinetic_change +=
-              0.5 * properties[Layout::mass] *
-              (new_velocity.norm_square() - old_velocity.norm_square());
-          }
-        Layout::set_velocity(new_velocity, properties);
-        max_speed_square =
-          std::max(max_speed_square, new_velocity.norm_square());
-
-        // Leaving the box: removed through an open face. A deformable
-        // point that the interpolated velocity carries less than half a
-        // cell through a closed (rigid) face is put back on the face: the
-        // wall constrains the nodes, not the interpolation between them.
-        // Anything more is an error.
-        for (unsigned int d = 0; d < dim; ++d)
-          if (new_position[d] < lower[d] || new_position[d] > upper[d])
-            {
-              const unsigned int face =
-                2 * d + (new_position[d] > upper[d] ? 1 : 0);
-              const BoundaryCondition &condition =
-                grid.boundary_condition(face);
-              const double overshoot = std::max(lower[d] - new_position[d],
-                                                new_position[d] - upper[d]);
-              if (condition.type != BoundaryType::open &&
-                  !grains[grain].rigid && overshoot < 0.5 * h[d])
-                {
-                  new_position[d] = (face % 2 == 0) ? lower[d] : upper[d];
-                  ++statistics.n_held_at_walls;
-                  continue;
-                }
-              if (condition.type == BoundaryType::open)
-                {
-                  particles_to_remove.push_back(particle);
-                  return;
-                }
-              std::ostringstream message;
-              message << "particle " << particle->get_id() << " of grain "
-                      << grain + 1 << " (" << parameters.grains[grain].source
-                      << ") left the background grid through the closed face "
-                      << face_names[face] << " ("
-                      << boundary_type_names[static_cast<int>(condition.type)]
-                      << ") at position (";
-              for (unsigned int e = 0; e < dim; ++e)
-                message << (e > 0 ? ", " : "") << new_position[e];
-              message << ") at time " << time + dt
-                      << ". Enlarge the grid (Background grid/Lower corner, "
-                         "Upper corner) or make that face open (Background "
-                         "grid/Boundary conditions).";
-              error = message.str();
-              return;
-            }
-
-        // Stay in the cell if possible: then no sort is needed.
-        Point<dim> reference = particle->get_reference_location();
-        bool       inside    = true;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            reference[d] += (new_position[d] - old_position[d]) / h[d];
-            inside = inside && reference[d] >= 0. && reference[d] <= 1.;
-          }
-        particle->set_location(new_position);
-        if (inside)
-          particle->set_reference_location(reference);
-        else
-          statistics.sorted = true;
-      });
-    throw_on_all_ranks(error, grid.get_triangulation().get_communicator());
-    statistics.max_speed = std::sqrt(max_speed_square);
-
-    double grid_kinetic_change = 0.;
-    for (unsigned int s = 0; s < layout.n_slots(); ++s)
-      if (!field_is_rigid[layout.field(s)])
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const unsigned int k = s * dim + d;
-            grid_kinetic_change += 0.5 * masses.local_element(s) *
-                                   (velocities_new.local_element(k) *
-                                      velocities_new.local_element(k) -
-                                    velocities_p2g.local_element(k) *
-                                      velocities_p2g.local_element(k));
-          }
-    statistics.transfer_energy_change =
-      particle_kinetic_change - grid_kinetic_change;
-  }
-
-
-
-  template class TimeIntegrator<2>;
-  template class TimeIntegrator<3>;
   template double
   largest_wave_speed<2>(
     const std::vector<GrainInfo<2>> &,
@@ -472,4 +55,16 @@ namespace grainmpm
   largest_wave_speed<3>(
     const std::vector<GrainInfo<3>> &,
     const std::vector<std::unique_ptr<ConstitutiveModel<3>>> &);
+  template void
+  begin_step<2>(Transfer<2> &,
+                const GrainContact<2> &,
+                Particles::ParticleHandler<2> &,
+                const double,
+                GridState<2> &);
+  template void
+  begin_step<3>(Transfer<3> &,
+                const GrainContact<3> &,
+                Particles::ParticleHandler<3> &,
+                const double,
+                GridState<3> &);
 } // namespace grainmpm

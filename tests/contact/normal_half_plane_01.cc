@@ -119,8 +119,10 @@ test()
   // (2) The contact normals of both grains.
   const ContactParameters contact_parameters;
   const std::vector<bool> rigid = {false, false};
-  GrainContact<dim>       contact(contact_parameters, grid, rigid);
-  VectorType              normals;
+  // No prescribed velocities: rigid fields here are only flags.
+  const std::vector<GrainInfo<dim>> grains(rigid.size());
+  GrainContact<dim> contact(contact_parameters, grid, grains, rigid);
+  VectorType        normals;
   contact.compute_normals(layout, mass_gradients, normals);
 
   double max_sum = 0., max_length_error = 0., min_nx_interior = 2.,

@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
+#include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/transfer/grain_field_layout.h>
 
 #include <deal.II/base/tensor.h>
@@ -19,24 +20,70 @@ namespace grainmpm
   using namespace dealii;
 
   /**
+   * The state of one constraint (a slot at a contact node, or a slot at a
+   * wall): free (receding, left alone), sliding (the normal part of the
+   * velocity relative to the partner is removed and, with friction, the
+   * tangential part reduced by mu times the normal part along a slip
+   * direction) or sticking (the slot takes the partner's velocity).
+   */
+  enum class ContactState : unsigned char
+  {
+    free     = 0,
+    sliding  = 1,
+    sticking = 2
+  };
+
+
+
+  /**
+   * The contact and wall status of one step, frozen by GrainContact::freeze
+   * and applied by GrainContact::apply_frozen (the implicit scheme). Given
+   * the status, the constraints are a linear map of the velocities.
+   */
+  template <int dim>
+  struct ContactStatus
+  {
+    /** State, slip direction and partner velocity v_ref per owned slot. */
+    std::vector<ContactState>   slot_state;
+    std::vector<Tensor<1, dim>> slip_directions;
+    std::vector<Tensor<1, dim>> references;
+
+    /** Wall entries: (slot, face) of deformable slots at closed faces. */
+    std::vector<unsigned int>   wall_slots;
+    std::vector<unsigned char>  wall_faces;
+    std::vector<ContactState>   wall_state;
+    std::vector<Tensor<1, dim>> wall_slip_directions;
+
+    /** Whether any slot or wall entry is not free. */
+    bool any_active = false;
+  };
+
+
+
+  /**
    * The Bardenhagen-Brackbill-Sulsky contact between the velocity fields of
-   * grains that meet at a grid node (seed eqs. 5-6, reference/physics.md
-   * sections 3.3-3.9), and the rigid walls on the faces of the box
-   * (section 2.5).
+   * grains that meet at a grid node (Bardenhagen, Brackbill & Sulsky 2000;
+   * Cummins & Brackbill 2001, eqs. 5-6), the rigid walls on the faces of
+   * the box, and the rigid grains. This class is the only implementation of
+   * the contact law; the explicit scheme applies it as it decides the
+   * states, the implicit residual applies it with the states frozen.
    *
    * At a contact node every field g gets the normal
    * n_g = (g_g - sum_{k != g} g_k) / |...| from the mass gradients
    * g_g = sum_p m_p grad S_ip, so that two fields get exactly antiparallel
-   * normals. Field g approaches iff (v_g - v_cm) . n_g > 0, v_cm being the
+   * normals. Field g approaches iff (v_g - v_ref) . n_g > 0, v_ref being the
    * centre-of-mass velocity of the node (or the velocity of a rigid field,
-   * which has infinite mass); then the normal part of v_g - v_cm is removed
+   * which has infinite mass); then the normal part of v_g - v_ref is removed
    * and the tangential part reduced by Coulomb friction (stick if
    * mu D >= |dv_t|, else slip by mu D). Receding fields are left alone.
    * With two deformable fields this conserves the node's momentum exactly.
    * With three or more the normals cannot all be pairwise antiparallel; the
    * projection then alternates with a common velocity shift that restores
-   * the node's momentum, until no field approaches, so momentum is
-   * conserved at every contact node and no field is left approaching.
+   * the node's momentum, until the shift vanishes, so momentum is conserved
+   * at every contact node. With decided states (explicit), each pass
+   * decides again, so no field is left approaching; with frozen states
+   * (implicit), each pass applies the same states, so every constrained
+   * field satisfies its constraint.
    */
   template <int dim>
   class GrainContact
@@ -45,12 +92,28 @@ namespace grainmpm
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
     /**
-     * @p field_is_rigid says for each field whether it belongs to a rigid
-     * grain.
+     * Where the projection takes the partner velocity v_ref of a node: from
+     * the velocities it acts on (the rigid field or the centre of mass,
+     * with the momentum-restoring shift at nodes of three or more
+     * deformable fields), the value frozen with the status (no shift: the
+     * preconditioner's simplified Jacobian), or zero (no shift: the linear
+     * part of the frozen projection, which acts on velocity differences).
      */
-    GrainContact(const ContactParameters   &parameters,
-                 const BackgroundGrid<dim> &grid,
-                 const std::vector<bool>   &field_is_rigid);
+    enum class Reference
+    {
+      from_velocities,
+      frozen,
+      zero
+    };
+
+    /**
+     * @p field_is_rigid says for each field whether it belongs to a rigid
+     * grain; rigid grains take their prescribed velocities from @p grains.
+     */
+    GrainContact(const ContactParameters           &parameters,
+                 const BackgroundGrid<dim>         &grid,
+                 const std::vector<GrainInfo<dim>> &grains,
+                 const std::vector<bool>           &field_is_rigid);
 
     /**
      * Contact normals (dim numbers per slot) at the contact nodes of
@@ -61,30 +124,99 @@ namespace grainmpm
                     const VectorType            &mass_gradients,
                     VectorType                  &normals) const;
 
+    /** Set the slots of rigid fields to their velocity at @p time. */
+    void
+    prescribe_rigid_velocities(const GrainFieldLayout<dim> &layout,
+                               VectorType                  &velocities,
+                               const double                 time) const;
+
     /**
-     * Apply the contact projection to @p velocities (dim per slot) at every
-     * contact node. Sets @p node_in_contact[node] for nodes where a field
-     * was corrected, and returns their number.
+     * Apply the contact law to @p velocities (dim per slot) at every
+     * contact node, deciding the states. Slots with a mass not above
+     * @p mass_threshold are left alone. Sets (*@p node_in_contact)[node]
+     * (if given) for nodes where a field was corrected, and returns their
+     * number. If
+     * @p status is given, records the states decided (a field corrected in
+     * any pass keeps the state of its last correction) and the partner
+     * velocities.
      */
     unsigned int
     apply_contact(const GrainFieldLayout<dim> &layout,
                   const VectorType            &masses,
                   const VectorType            &normals,
                   VectorType                  &velocities,
-                  std::vector<unsigned char>  &node_in_contact) const;
+                  std::vector<unsigned char>  *node_in_contact,
+                  const double                 mass_threshold = 0.,
+                  ContactStatus<dim>          *status         = nullptr) const;
 
     /**
      * Apply the wall conditions of the box faces to the deformable fields
-     * at boundary nodes.
+     * at boundary nodes, face after face, deciding the states.
      */
     void
     apply_walls(const GrainFieldLayout<dim> &layout,
                 VectorType                  &velocities) const;
 
     /**
-     * The projection at one node with @p n_fields fields: masses, rigid
-     * flags, normals, and the velocities to correct in place. Returns true
-     * if some field was corrected. Exposed for the unit tests.
+     * Size @p status for @p layout: every slot free, one wall entry per
+     * (deformable slot, closed face) at boundary nodes.
+     */
+    void
+    reinit_status(const GrainFieldLayout<dim> &layout,
+                  ContactStatus<dim>          &status) const;
+
+    /**
+     * Decide and freeze the contact and wall states for the velocities
+     * @p velocities: the contact law as apply_contact() applies it (slots
+     * with a mass not above @p mass_threshold free), then the walls on the
+     * velocities after contact.
+     */
+    void
+    freeze(const GrainFieldLayout<dim> &layout,
+           const VectorType            &masses,
+           const VectorType            &normals,
+           const VectorType            &velocities,
+           const double                 mass_threshold,
+           ContactStatus<dim>          &status) const;
+
+    /**
+     * Apply the frozen @p status to @p velocities in place: contact at the
+     * nodes with a constrained slot, with v_ref taken as @p reference
+     * says, then the walls. Flags the nodes where contact is active in
+     * @p node_in_contact (if given) and returns their number.
+     */
+    unsigned int
+    apply_frozen(const GrainFieldLayout<dim> &layout,
+                 const VectorType            &masses,
+                 const VectorType            &normals,
+                 const ContactStatus<dim>    &status,
+                 const Reference              reference,
+                 VectorType                  &velocities,
+                 std::vector<unsigned char>  *node_in_contact = nullptr) const;
+
+    /**
+     * The work of the constraints that changed @p before into @p after
+     * (dim per slot) on the velocities @p rate, done on the deformable
+     * slots: returns {friction work, boundary work}. The boundary work is
+     * what rigid partners put in (the reaction on the deformable slots of
+     * a node times the rigid slot's velocity; walls are at rest), the
+     * friction work what the constraints take out beyond it.
+     */
+    std::pair<double, double>
+    constraint_work(const GrainFieldLayout<dim> &layout,
+                    const VectorType            &masses,
+                    const VectorType            &before,
+                    const VectorType            &after,
+                    const VectorType            &rate) const;
+
+    /**
+     * The contact law at one node with @p n_fields fields: masses, rigid
+     * flags, normals, and the velocities to correct in place, deciding the
+     * states (slots with mass not above @p mass_threshold are left alone).
+     * Returns true if some field was corrected. If @p states is given, it
+     * receives the state of each field decided in the first pass (and
+     * @p slip_directions the slip directions, @p reference the partner
+     * velocity).
      */
     static bool
     project_node(const unsigned int    n_fields,
@@ -93,16 +225,83 @@ namespace grainmpm
                  const Tensor<1, dim> *normals,
                  Tensor<1, dim>       *velocities,
                  const ContactModel    model,
-                 const double          friction_coefficient);
+                 const double          friction_coefficient,
+                 const double          mass_threshold  = 0.,
+                 ContactState         *states          = nullptr,
+                 Tensor<1, dim>       *slip_directions = nullptr,
+                 Tensor<1, dim>       *reference       = nullptr);
+
+    /**
+     * The contact law at one node with the states @p states and slip
+     * directions @p slip_directions frozen, applied once (with one
+     * momentum-restoring shift at nodes of three or more deformable fields
+     * if v_ref comes from the velocities); v_ref is @p frozen_reference or
+     * as @p reference says.
+     */
+    static void
+    project_node_frozen(const unsigned int    n_fields,
+                        const double         *masses,
+                        const bool           *rigid,
+                        const Tensor<1, dim> *normals,
+                        const ContactState   *states,
+                        const Tensor<1, dim> *slip_directions,
+                        const Reference       reference,
+                        const Tensor<1, dim> &frozen_reference,
+                        const double          friction_coefficient,
+                        Tensor<1, dim>       *velocities);
+
+    /**
+     * The state of a velocity @p relative to its partner (or wall) with
+     * the normal @p normal (pointing into the partner) and friction
+     * coefficient @p mu: free if not approaching, sticking if
+     * mu D >= |v_t|, else sliding; sets the slip direction of a sliding
+     * state with friction, zero otherwise.
+     */
+    static ContactState
+    classify(const Tensor<1, dim> &relative,
+             const Tensor<1, dim> &normal,
+             const double          mu,
+             Tensor<1, dim>       &slip_direction);
+
+    /**
+     * Apply @p state to @p velocity with partner velocity @p reference.
+     */
+    static void
+    apply_state(const ContactState    state,
+                const Tensor<1, dim> &normal,
+                const double          mu,
+                const Tensor<1, dim> &slip_direction,
+                const Tensor<1, dim> &reference,
+                Tensor<1, dim>       &velocity);
+
+    /**
+     * The state of a wall with @p condition and outward normal @p normal
+     * (pointing into the wall) for @p velocity.
+     */
+    static ContactState
+    classify_wall(const BoundaryCondition &condition,
+                  const Tensor<1, dim>    &normal,
+                  const Tensor<1, dim>    &velocity,
+                  Tensor<1, dim>          &slip_direction);
 
     /**
      * The unilateral wall condition with outward wall normal @p normal
-     * (pointing into the wall) applied to @p velocity.
+     * applied to @p velocity (classify_wall, then apply_state with the wall
+     * at rest).
      */
     static void
     apply_wall(const BoundaryCondition &condition,
                const Tensor<1, dim>    &normal,
                Tensor<1, dim>          &velocity);
+
+    /** Friction coefficient of a wall with @p condition. */
+    static double
+    wall_friction(const BoundaryCondition &condition)
+    {
+      return condition.type == BoundaryType::friction ?
+               condition.friction_coefficient :
+               0.;
+    }
 
     /** Outward unit normal of box face @p face (x-, x+, y-, ...). */
     static Tensor<1, dim>
@@ -114,9 +313,20 @@ namespace grainmpm
     }
 
   private:
-    const ContactParameters   &parameters;
-    const BackgroundGrid<dim> &grid;
-    const std::vector<bool>   &field_is_rigid;
+    /** The friction coefficient of the contact model (0 without). */
+    double
+    friction_coefficient() const
+    {
+      return parameters.model == ContactModel::coulomb_friction ?
+               parameters.friction_coefficient :
+               0.;
+    }
+
+    const ContactParameters           &parameters;
+    const BackgroundGrid<dim>         &grid;
+    const std::vector<GrainInfo<dim>> &grains;
+    const std::vector<bool>           &field_is_rigid;
+    const bool                         has_rigid_fields;
   };
 } // namespace grainmpm
 

@@ -11,8 +11,9 @@ namespace grainmpm
   using namespace dealii;
 
   /**
-   * The explicit leapfrog step of seed eqs. (7)-(10) on the multi-grain
-   * grid field, with Bardenhagen-Brackbill-Sulsky contact and box walls.
+   * The explicit leapfrog step of Cummins & Brackbill (2001), eqs. (7)-(10),
+   * on the multi-grain grid field, with Bardenhagen-Brackbill-Sulsky
+   * contact and box walls.
    *
    * USF (default, eqs. 8-10 as written): P2G of mass and momentum,
    * contact and walls on v^n, stress/volume update from the corrected v^n,
@@ -22,8 +23,8 @@ namespace grainmpm
    * momenta (with contact and walls again).
    *
    * The FLIP increment is measured from the uncorrected P2G velocity, so
-   * that the particles receive the full contact impulse (momentum-consistent
-   * choice of reference/physics.md section 3.7).
+   * that the particles receive the full contact impulse and the total
+   * momentum is conserved through contact.
    */
   template <int dim>
   class ExplicitLeapfrog : public TimeIntegrator<dim>
@@ -42,44 +43,31 @@ namespace grainmpm
             const double                     time,
             const double                     dt) override;
 
+    const GrainFieldLayout<dim> &
+    get_layout() const override
+    {
+      return transfer.get_layout();
+    }
+
+    const GridState<dim> &
+    get_grid_state() const override
+    {
+      return state;
+    }
+
   private:
-    /**
-     * Strain increment dt grad v from @p grid_velocities, new stress,
-     * deformation gradient and volume of every deformable particle; adds
-     * the plastic work to @p plastic_work.
-     */
-    void
-    update_stresses(Particles::ParticleHandler<dim> &particle_handler,
-                    const VectorType                &grid_velocities,
-                    const double                     dt,
-                    double                          &plastic_work);
+    /** Contact and walls on @p velocities; returns the contact nodes. */
+    unsigned int
+    apply_constraints(VectorType &velocities);
 
-    /** Internal force -V sigma . grad S and gravity m g S per slot. */
-    void
-    compute_forces(Particles::ParticleHandler<dim> &particle_handler);
-
-    /** v^L = v + dt f / m on deformable slots; rigid slots prescribed. */
+    /** v^L = v + dt f / m on deformable slots. */
     void
     integrate_grid_velocities(const double dt);
 
-    /** Velocities remapped from the particle momenta (MUSL). */
-    void
-    remap_velocities(Particles::ParticleHandler<dim> &particle_handler);
-
-    using TimeIntegrator<dim>::parameters;
-    using TimeIntegrator<dim>::grid;
-    using TimeIntegrator<dim>::grains;
-    using TimeIntegrator<dim>::materials;
-    using TimeIntegrator<dim>::field_is_rigid;
-    using TimeIntegrator<dim>::cache;
-    using TimeIntegrator<dim>::layout;
-    using TimeIntegrator<dim>::masses;
-    using TimeIntegrator<dim>::momenta;
-    using TimeIntegrator<dim>::velocities_p2g;
-    using TimeIntegrator<dim>::velocities_new;
-    using TimeIntegrator<dim>::apply_constraints;
-    using TimeIntegrator<dim>::prescribe_rigid_velocities;
-    using TimeIntegrator<dim>::velocities_from_momenta;
+    const Parameters<dim> &parameters;
+    Transfer<dim>          transfer;
+    GrainContact<dim>      contact;
+    GridState<dim>         state;
 
     VectorType forces;
     /** The end velocities before the constraints (for their work). */

@@ -13,8 +13,8 @@ namespace grainmpm
   using namespace dealii;
 
   /**
-   * The fully implicit theta step of Cummins & Brackbill (seed eqs. 11-20,
-   * DESIGN.md section 5, reference/physics.md section 4.8):
+   * The fully implicit theta step of Cummins & Brackbill (2001), eqs.
+   * (11)-(20):
    *
    * 1. P2G of mass, momentum and mass gradients at t^n; contact and walls
    *    on v^n (the reference v^n of the step); normals frozen.
@@ -70,6 +70,18 @@ namespace grainmpm
       return velocities_old;
     }
 
+    const GrainFieldLayout<dim> &
+    get_layout() const override
+    {
+      return transfer.get_layout();
+    }
+
+    const GridState<dim> &
+    get_grid_state() const override
+    {
+      return state;
+    }
+
     /** The Newton-Krylov solver. */
     const NewtonKrylovSolver &
     get_solver() const
@@ -88,35 +100,10 @@ namespace grainmpm
     }
 
   private:
-    /** The velocity scale U: Velocity scale or the largest wave speed. */
-    double
-    compute_velocity_scale() const;
-
-    /**
-     * Stress, history, F and volume of every deformable particle; adds the
-     * new elastic energy to @p strain_energy and the plastic work to
-     * @p plastic_work.
-     */
-    void
-    commit_particle_state(Particles::ParticleHandler<dim> &particle_handler,
-                          const VectorType                &theta_velocities,
-                          double                          &strain_energy,
-                          double                          &plastic_work);
-
-    using TimeIntegrator<dim>::parameters;
-    using TimeIntegrator<dim>::grid;
-    using TimeIntegrator<dim>::grains;
-    using TimeIntegrator<dim>::materials;
-    using TimeIntegrator<dim>::field_is_rigid;
-    using TimeIntegrator<dim>::cache;
-    using TimeIntegrator<dim>::layout;
-    using TimeIntegrator<dim>::masses;
-    using TimeIntegrator<dim>::normals;
-    using TimeIntegrator<dim>::velocities_p2g;
-    using TimeIntegrator<dim>::velocities_new;
-    using TimeIntegrator<dim>::node_in_contact;
-    using TimeIntegrator<dim>::apply_constraints;
-    using TimeIntegrator<dim>::prescribe_rigid_velocities;
+    const Parameters<dim> &parameters;
+    Transfer<dim>          transfer;
+    GrainContact<dim>      contact;
+    GridState<dim>         state;
 
     ThetaResidual<dim>        residual;
     NewtonKrylovSolver        solver;

@@ -4,13 +4,11 @@
 #ifndef grainmpm_time_integration_theta_residual_h
 #define grainmpm_time_integration_theta_residual_h
 
-#include <grainmpm/base/parameters.h>
+#include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
-#include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/solvers/newton_krylov.h>
-#include <grainmpm/transfer/grain_field_layout.h>
-#include <grainmpm/transfer/transfer_cache.h>
+#include <grainmpm/transfer/transfer.h>
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
@@ -27,8 +25,8 @@ namespace grainmpm
   using namespace dealii;
 
   /**
-   * The residual of the implicit theta scheme (seed eq. 16,
-   * reference/physics.md sections 4.2-4.4), divided by the slot mass so
+   * The residual of the implicit theta scheme (Cummins & Brackbill 2001,
+   * eq. 16), divided by the slot mass so
    * that it has velocity units. The unknown V holds v^{n+1} for every slot
    * (dim numbers per slot, the layout of GrainFieldLayout):
    *
@@ -43,19 +41,17 @@ namespace grainmpm
    * freeze_status(). The projected end velocity is
    * Pi_theta(V) = (v^theta - (1 - theta) v^n) / theta. Slots of rigid
    * grains have R = V - (prescribed velocity at t + dt); slots with less
-   * than 1e-6 of the largest particle mass (m_min, reference/physics.md
-   * section 8.5) R = V - v^n - dt g.
+   * than 1e-6 of the largest particle mass R = V - v^n - dt g.
    *
    * The constraints act on v^theta, the velocity that moves the particles
    * and strains them, not on v^{n+1}: then no grain moves into another or
    * into a wall within the step, and a frictionless reaction does no work,
    * because it is normal to v^theta - v_ref where it acts. With theta = 1/2
    * the grid step then conserves energy through contact and wall impacts
-   * (doc/validation.md). Constraining v^{n+1} instead (reference/physics.md
-   * 4.4) lets the reaction do work wherever a slot separating at t^n is
-   * pushed back, which gained 75 % of E0 in five wall impacts of
-   * prm/single_grain_rebound_implicit.prm. Status decisions are taken on
-   * the trial theta velocity accordingly.
+   * (doc/validation.md). Constraining v^{n+1} instead lets the reaction do work
+   * wherever a slot separating at t^n is pushed back, which gained 75 % of E0
+   * in five wall impacts of prm/single_grain_rebound_implicit.prm. Status
+   * decisions are taken on the trial theta velocity accordingly.
    *
    * Everything the residual reads at t^n is copied once per step into flat
    * arrays in the order of the TransferCache (stress, volume, history,
@@ -64,14 +60,13 @@ namespace grainmpm
    * `const` function of V, and two calls with the same V and status give
    * bit-identical results (the loops are serial and in a fixed order).
    *
-   * The contact status of a slot at a contact node is free, sliding (the
-   * normal part of v - v_ref is removed and, with Coulomb friction, the
-   * tangential part reduced by mu times the normal part along a frozen
-   * slip direction) or sticking (v = v_ref). v_ref is the velocity of a
-   * rigid partner or the centre-of-mass velocity of the node, computed from
-   * V; with three or more deformable fields a common shift restores the
-   * node's momentum after the projection. Walls are frozen likewise per
-   * (slot, face). Given the status, Pi is linear in V, so the
+   * Pi is the contact law of GrainContact with its status frozen
+   * (GrainContact::freeze, GrainContact::apply_frozen): per slot at a
+   * contact node free, sliding or sticking, with v_ref the velocity of a
+   * rigid partner or the centre-of-mass velocity of the node computed from
+   * V, and at nodes of three or more deformable fields the projection
+   * alternated with the momentum-restoring shift; walls are frozen
+   * likewise per (slot, face). Given the status, Pi is linear in V, so the
    * finite-difference Jacobian never straddles a switch.
    *
    * The simplified Jacobian of the preconditioner (eq. 20) holds v_ref at
@@ -86,25 +81,26 @@ namespace grainmpm
   public:
     using VectorType = NonlinearProblem::VectorType;
 
+    /**
+     * The residual with the contact law @p contact on @p grid.
+     */
     ThetaResidual(
-      const ContactParameters   &contact,
-      const BackgroundGrid<dim> &grid,
-      const std::vector<bool>   &field_is_rigid,
+      const GrainContact<dim>                                    &contact,
+      const BackgroundGrid<dim>                                  &grid,
       const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
 
     /**
      * Set up the step from @p time to @p time + @p dt: copy the particle
-     * state of @p particle_handler (visited in the order of @p cache), and
-     * keep references to the slot @p masses, contact @p normals, the
-     * velocities @p old_velocities (v^n after contact and walls) and the
-     * prescribed velocities @p rigid_velocities at t + dt of rigid slots.
-     * All referenced objects must live until the step is done.
+     * state of @p particle_handler (visited in the order of the transfer
+     * cache of @p transfer), and keep references to @p transfer, the slot
+     * @p masses, contact @p normals, the velocities @p old_velocities (v^n
+     * after contact and walls) and the prescribed velocities
+     * @p rigid_velocities at t + dt of rigid slots. All referenced objects
+     * must live until the step is done.
      */
     void
-    reinit(const TransferCache<dim>              &cache,
-           const GrainFieldLayout<dim>           &layout,
+    reinit(const Transfer<dim>                   &transfer,
            const Particles::ParticleHandler<dim> &particle_handler,
-           const std::vector<GrainInfo<dim>>     &grains,
            const VectorType                      &masses,
            const VectorType                      &normals,
            const VectorType                      &old_velocities,
@@ -190,25 +186,6 @@ namespace grainmpm
     unsigned int
     colour(const unsigned int dof) const;
 
-    /**
-     * The new stress, history, increment dt grad v^theta and volume
-     * factor det(I + dt grad v^theta) of particle @p p (cache order) for
-     * the time-centred grid velocity @p theta_velocities.
-     */
-    void
-    particle_update(const std::size_t      p,
-                    const VectorType      &theta_velocities,
-                    SymmetricTensor<2, 3> &new_stress,
-                    double                &new_plastic_strain,
-                    Tensor<2, dim>        &increment) const;
-
-    /** Whether particle @p p (cache order) belongs to a deformable grain. */
-    bool
-    is_deformable(const std::size_t p) const
-    {
-      return particle_models[p] != nullptr;
-    }
-
     /** sum_p V_p W(sigma_p) of the deformable particles at t^n. */
     double
     old_strain_energy() const;
@@ -225,61 +202,16 @@ namespace grainmpm
     }
 
   private:
-    /** Contact status of a slot. */
-    enum State : unsigned char
-    {
-      free     = 0,
-      sliding  = 1,
-      sticking = 2
-    };
-
-    /**
-     * Where the contact projection takes the reference velocity v_ref of a
-     * node: from the vector it acts on (the rigid slot or the centre of
-     * mass), the value frozen with the status (simplified Jacobian), or
-     * zero (the linear part of the simplified projection).
-     */
-    enum class ReferenceMode
-    {
-      from_vector,
-      frozen,
-      zero
-    };
-
-    /**
-     * Apply the frozen contact projection to @p v in place; flags and
-     * counts the nodes where it is active.
-     */
-    unsigned int
-    apply_frozen_contact(VectorType                 &v,
-                         const ReferenceMode         mode,
-                         std::vector<unsigned char> *node_flags) const;
-
     /**
      * Frozen contact, then frozen walls, on the end velocities @p v in
      * place, acting on the theta velocity (1 - theta) v^n + theta v; with
-     * ReferenceMode::zero the linear part of that map, which acts on
-     * differences of velocities directly.
+     * GrainContact::Reference::zero the linear part of that map, which
+     * acts on differences of velocities directly.
      */
     unsigned int
-    apply_projection(VectorType                 &v,
-                     const ReferenceMode         mode,
+    apply_projection(VectorType                                 &v,
+                     const typename GrainContact<dim>::Reference reference,
                      std::vector<unsigned char> *node_in_contact) const;
-
-    /**
-     * The contact state of a velocity @p relative to the partner (or wall)
-     * with normal @p normal and friction coefficient @p mu; sets the slip
-     * direction of a sliding state with friction, zero otherwise.
-     */
-    static unsigned char
-    classify(const Tensor<1, dim> &relative,
-             const Tensor<1, dim> &normal,
-             const double          mu,
-             Tensor<1, dim>       &slip_direction);
-
-    /** Apply wall entry @p w with its frozen status to @p velocity. */
-    void
-    apply_wall_entry(const unsigned int w, Tensor<1, dim> &velocity) const;
 
     /** The communicator of the grid. */
     MPI_Comm
@@ -288,20 +220,11 @@ namespace grainmpm
       return grid.get_triangulation().get_communicator();
     }
 
-    /** Stress and history update of particle @p p for v^theta. */
-    void
-    compute_particle(const std::size_t      p,
-                     const VectorType      &theta_v,
-                     SymmetricTensor<2, 3> &new_stress,
-                     double                &plastic_strain,
-                     Tensor<2, dim>        &increment) const;
-
-    const ContactParameters                                    &contact;
+    const GrainContact<dim>                                    &contact;
     const BackgroundGrid<dim>                                  &grid;
-    const std::vector<bool>                                    &field_is_rigid;
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
 
-    const TransferCache<dim>    *cache            = nullptr;
+    const Transfer<dim>         *transfer         = nullptr;
     const GrainFieldLayout<dim> *layout           = nullptr;
     const VectorType            *masses           = nullptr;
     const VectorType            *normals          = nullptr;
@@ -310,6 +233,8 @@ namespace grainmpm
     Tensor<1, dim>               gravity;
     double                       theta = 0.5;
     double                       dt    = 0.;
+    /** Slots with no more mass than this are not unknowns. */
+    double mass_threshold = 0.;
 
     /** The structure-of-arrays particle mirror (cache order). */
     std::vector<const ConstitutiveModel<dim> *> particle_models;
@@ -320,19 +245,8 @@ namespace grainmpm
     std::vector<bool> slot_active;
     std::vector<bool> slot_rigid;
 
-    /** Whether any slot or wall entry is not free. */
-    bool any_constraint_active = false;
-
-    /** Frozen contact status per slot, slip directions, frozen v_ref. */
-    std::vector<unsigned char>  slot_state;
-    std::vector<Tensor<1, dim>> slip_directions;
-    std::vector<Tensor<1, dim>> frozen_references;
-
-    /** Wall entries (slot, face) and their frozen status. */
-    std::vector<unsigned int>   wall_slots;
-    std::vector<unsigned char>  wall_faces;
-    std::vector<unsigned char>  wall_state;
-    std::vector<Tensor<1, dim>> wall_slip_directions;
+    /** The frozen contact and wall status. */
+    ContactStatus<dim> status;
 
     /** Work vectors of evaluate(). */
     mutable VectorType    work_projected;

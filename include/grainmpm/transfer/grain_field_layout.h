@@ -104,6 +104,13 @@ namespace grainmpm
       return n_owned_nodes;
     }
 
+    /** The communicator of the grid of the last reinit(). */
+    MPI_Comm
+    get_communicator() const
+    {
+      return mpi_communicator;
+    }
+
     /** Owned nodes with two or more slots. */
     const std::vector<unsigned int> &
     contact_nodes() const

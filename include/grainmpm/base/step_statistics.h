@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_base_step_statistics_h
+#define grainmpm_base_step_statistics_h
+
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/particles/property_pool.h>
+
+#include <string>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * What one step did.
+   */
+  struct StepStatistics
+  {
+    /** Contact nodes where the projection corrected a field. */
+    unsigned int n_contact_nodes = 0;
+    /** Particles removed through open faces in this step. */
+    types::particle_index n_removed = 0;
+    /**
+     * Deformable particles put back on a closed face that the interpolated
+     * velocity had carried less than half a cell through.
+     */
+    types::particle_index n_held_at_walls = 0;
+    /** Largest particle speed after the step. */
+    double max_speed = 0.;
+    /** True if some particle changed cells and the handler was sorted. */
+    bool sorted = false;
+
+    /** False if an implicit step failed; the particles are then untouched. */
+    bool converged = true;
+    /** Why an implicit step failed. */
+    std::string failure;
+    /** Newton iterations of the accepted solve. */
+    unsigned int newton_iterations = 0;
+    /** Krylov iterations summed over the Newton iterations. */
+    unsigned int linear_iterations = 0;
+    /** Residual evaluations of the step (all attempts). */
+    unsigned int residual_evaluations = 0;
+    /** Final RMS(R) / U of the accepted solve (U: velocity scale). */
+    double residual_norm = 0.;
+    /** Changes of the contact status during the accepted solve. */
+    unsigned int status_changes = 0;
+    /**
+     * Implicit scheme: change of the grid energy 1/2 sum m v^2 + sum V W
+     * of the deformable grains over the step, from the particle-to-grid
+     * velocities (so including the contact pass on v^n) to the end
+     * velocities: the time integrator's share of the energy balance. With
+     * transfer_energy_change it adds up to the change of the particles'
+     * kinetic plus elastic energy (without gravity and removed particles).
+     */
+    double grid_energy_change = 0.;
+    /**
+     * Both schemes: what the grid-to-particle velocity update adds to the
+     * kinetic energy of the deformable particles beyond the change of the
+     * grid kinetic energy it maps, sum_p 1/2 m_p |v_p|^2 (after - before)
+     * - sum_s 1/2 m_s (|v_s^new|^2 - |v_s^p2g|^2). For FLIP it is
+     * -1/2 (sum_s m_s |dv_s|^2 - sum_p m_p |sum_s S_sp dv_s|^2) <= 0: the
+     * lumped-mass loss of Cummins & Brackbill, which the grid cannot see.
+     */
+    double transfer_energy_change = 0.;
+    /**
+     * Both schemes: the step's plastic work sum_p V_p sigma : de_p of the
+     * deformable particles (>= 0).
+     */
+    double plastic_work = 0.;
+    /**
+     * Both schemes: the work the contact, wall and rigid-grain constraints
+     * of the step do on the deformable grains, split into what rigid grains
+     * and walls put in (boundary_work: the reaction on the slots of a node
+     * times the velocity of its rigid partner; walls are at rest) and what
+     * friction takes out (friction_work >= 0 with Coulomb friction, 0 for
+     * frictionless constraints). The reaction on a slot is m_s times the
+     * change the constraints make to its end velocity; it works on the
+     * velocity that moves the particles (v^theta implicit, v^{n+1}
+     * explicit).
+     */
+    double friction_work = 0.;
+    double boundary_work = 0.;
+    /** Attempts rejected before this step was accepted. */
+    unsigned int rejected = 0;
+
+    /**
+     * Add up (largest speed: maximum; sorted: or) what each rank counted
+     * of its particles and slots: contact nodes, removed and held points,
+     * the transfer energy change and the plastic, friction and boundary
+     * work. Collective.
+     */
+    void
+    reduce(const MPI_Comm communicator);
+  };
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_transfer_transfer_h
+#define grainmpm_transfer_transfer_h
+
+#include <grainmpm/base/parameters.h>
+#include <grainmpm/base/step_statistics.h>
+#include <grainmpm/grid/background_grid.h>
+#include <grainmpm/materials/constitutive_model.h>
+#include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/transfer/grain_field_layout.h>
+#include <grainmpm/transfer/transfer_cache.h>
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <memory>
+#include <vector>
+
+namespace grainmpm
+{
+  using namespace dealii;
+
+  /**
+   * The particle-grid transfer of one step: the single place where the
+   * shape functions are evaluated (TransferCache::reinit) and where the
+   * particle loops of both time integrators live.
+   *
+   * reinit() evaluates the kernel at the particle positions at the start
+   * of the step and builds the multi-valued grid layout (the slots);
+   * everything else uses the cached values S_ip and grad S_ip:
+   * - particle to grid: mass m_s = sum_p m_p S_ip, momentum
+   *   p_s = sum_p m_p v_p S_ip and mass gradient sum_p m_p grad S_ip per
+   *   slot (the particles of the slot's field);
+   * - the velocity gradient of a particle, sum_i v_i (x) grad S_ip, and the
+   *   internal force -sum_p V_p sigma_p . grad S_ip it gives back;
+   * - the constitutive update of the particles from a grid velocity;
+   * - grid to particle: FLIP/PIC velocity and position update, with the
+   *   checks of particles leaving the box.
+   *
+   * Grid vectors have `dim` numbers per slot (slot * dim + d), laid out by
+   * get_layout().
+   */
+  template <int dim>
+  class Transfer
+  {
+  public:
+    using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+    /** Nodes a particle's shape functions touch. */
+    static constexpr unsigned int nodes_per_particle =
+      TransferCache<dim>::nodes_per_particle;
+
+    /**
+     * Every grain has its own velocity field, except with `Contact model =
+     * none`, where all deformable grains share the field of the first of
+     * them.
+     */
+    Transfer(
+      const Parameters<dim>                                      &parameters,
+      const BackgroundGrid<dim>                                  &grid,
+      const std::vector<GrainInfo<dim>>                          &grains,
+      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
+
+    /**
+     * Evaluate the shape functions at the positions of the particles of
+     * @p particle_handler and build the slot layout. Collective.
+     */
+    void
+    reinit(const Particles::ParticleHandler<dim> &particle_handler);
+
+    /** The slot layout of the last reinit(). */
+    const GrainFieldLayout<dim> &
+    get_layout() const
+    {
+      return layout;
+    }
+
+    /** The cached kernel values of the last reinit(). */
+    const TransferCache<dim> &
+    get_cache() const
+    {
+      return cache;
+    }
+
+    /** The grains. */
+    const std::vector<GrainInfo<dim>> &
+    get_grains() const
+    {
+      return grains;
+    }
+
+    /** For each field: whether it belongs to a rigid grain. */
+    const std::vector<bool> &
+    get_field_is_rigid() const
+    {
+      return field_is_rigid;
+    }
+
+    /**
+     * Call @p action(p, particle) for every locally owned particle in the
+     * order of the cache, p counting from 0.
+     */
+    template <typename ParticleHandlerType, typename Action>
+    void
+    for_each_particle(ParticleHandlerType &particle_handler,
+                      Action             &&action) const
+    {
+      std::size_t p = 0;
+      grainmpm::for_each_particle(grid,
+                                  particle_handler,
+                                  [&](const auto &, auto &particle) {
+                                    action(p, particle);
+                                    ++p;
+                                  });
+    }
+
+    /**
+     * Particle to grid: momenta sum_p m_p v_p S_ip and, if given, masses
+     * sum_p m_p S_ip and mass gradients sum_p m_p grad S_ip per slot,
+     * completed on the owners.
+     */
+    void
+    particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
+                      VectorType                            *masses,
+                      VectorType                            &momenta,
+                      VectorType *mass_gradients) const;
+
+    /** v = p / m on owned slots with mass, zero elsewhere. */
+    void
+    velocities_from_momenta(const VectorType &masses,
+                            const VectorType &momenta,
+                            VectorType       &velocities) const;
+
+    /**
+     * Internal force -V_p sigma_p . grad S_ip and gravity m_p g S_ip of
+     * the deformable particles per slot (explicit scheme).
+     */
+    void
+    compute_forces(const Particles::ParticleHandler<dim> &particle_handler,
+                   const Tensor<1, dim>                  &gravity,
+                   VectorType                            &forces) const;
+
+    /**
+     * The velocity gradient sum_i v_i (x) grad S_ip of particle @p p (cache
+     * order) from the grid velocities @p velocities (dim per local slot,
+     * ghosts included).
+     */
+    Tensor<2, dim>
+    velocity_gradient(const std::size_t p, const double *velocities) const
+    {
+      const unsigned int   *slots = cache.slots.data() + p * nodes_per_particle;
+      const Tensor<1, dim> *gradients =
+        cache.shape_gradients.data() + p * nodes_per_particle;
+      Tensor<2, dim> gradient;
+      for (unsigned int v = 0; v < nodes_per_particle; ++v)
+        for (unsigned int i = 0; i < dim; ++i)
+          {
+            const double velocity = velocities[slots[v] * dim + i];
+            for (unsigned int j = 0; j < dim; ++j)
+              gradient[i][j] += velocity * gradients[v][j];
+          }
+      return gradient;
+    }
+
+    /**
+     * Subtract the divergence sum_j @p stress_ij grad_j S_ip of particle
+     * @p p from @p forces (dim per local slot): the internal force of a
+     * stress already multiplied by the particle volume.
+     */
+    void
+    subtract_divergence(const std::size_t p,
+                        const double (&stress)[dim][dim],
+                        double *forces) const
+    {
+      const unsigned int   *slots = cache.slots.data() + p * nodes_per_particle;
+      const Tensor<1, dim> *gradients =
+        cache.shape_gradients.data() + p * nodes_per_particle;
+      for (unsigned int v = 0; v < nodes_per_particle; ++v)
+        for (unsigned int i = 0; i < dim; ++i)
+          {
+            double divergence = 0.;
+            for (unsigned int j = 0; j < dim; ++j)
+              divergence += stress[i][j] * gradients[v][j];
+            forces[slots[v] * dim + i] -= divergence;
+          }
+    }
+
+    /**
+     * Constitutive update of every deformable particle with the strain
+     * increment dt grad v from @p velocities: new stress and history,
+     * F <- (I + dt grad v) F and V = det(F) V_0. Adds the plastic work
+     * to @p plastic_work and, if given, the new elastic energy to
+     * @p strain_energy.
+     */
+    void
+    update_particle_states(Particles::ParticleHandler<dim> &particle_handler,
+                           const VectorType                &velocities,
+                           const double                     dt,
+                           double                          &plastic_work,
+                           double *strain_energy = nullptr) const;
+
+    /**
+     * Grid to particle: FLIP/PIC velocity update from @p new_velocities
+     * (the increment measured from @p reference_velocities; `Particle
+     * velocity update`) and position update x += dt sum_i S_ip v_i with
+     * v = @p position_velocities. Rigid grains follow their prescribed
+     * velocity. Records particles that left through open faces (removed by
+     * finish_step()) and whether the handler needs sorting, and the energy
+     * the velocity update adds beyond the change of the grid kinetic
+     * energy (StepStatistics::transfer_energy_change). Throws InputError
+     * on all ranks if a particle leaves through a closed face.
+     */
+    void
+    grid_to_particles(Particles::ParticleHandler<dim> &particle_handler,
+                      const VectorType                &masses,
+                      const VectorType                &new_velocities,
+                      const VectorType                &reference_velocities,
+                      const VectorType                &position_velocities,
+                      const double                     time,
+                      const double                     dt,
+                      StepStatistics                  &statistics);
+
+    /**
+     * Remove the particles that left, reduce @p statistics over the ranks
+     * and sort the particles if some changed cells. Collective.
+     */
+    void
+    finish_step(Particles::ParticleHandler<dim> &particle_handler,
+                StepStatistics                  &statistics);
+
+  private:
+    const Parameters<dim>                                      &parameters;
+    const BackgroundGrid<dim>                                  &grid;
+    const std::vector<GrainInfo<dim>>                          &grains;
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
+
+    std::vector<unsigned int> field_of_grain;
+    std::vector<bool>         field_is_rigid;
+    TransferCache<dim>        cache;
+    GrainFieldLayout<dim>     layout;
+
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+      particles_to_remove;
+  };
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,428 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/transfer/transfer.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
+#include <sstream>
+
+namespace grainmpm
+{
+  namespace
+  {
+    const char *const face_names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+    const char *const boundary_type_names[4] = {"free slip",
+                                                "no slip",
+                                                "friction",
+                                                "open"};
+
+    /**
+     * Store the new @p stress and @p plastic_strain of a particle with
+     * @p properties, update its deformation gradient by the increment
+     * @p increment (dt grad v: F <- (I + dt grad v) F) and its volume
+     * det(F) V_0. Returns the new volume.
+     */
+    template <int dim>
+    double
+    store_particle_state(const ArrayView<double>     &properties,
+                         const SymmetricTensor<2, 3> &stress,
+                         const double                 plastic_strain,
+                         const Tensor<2, dim>        &increment)
+    {
+      using Layout = MaterialPointLayout<dim>;
+      Layout::set_stress(stress, properties);
+      properties[Layout::plastic_strain] = plastic_strain;
+      Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
+      F += increment * F;
+      Layout::set_deformation_gradient(F, properties);
+      properties[Layout::volume] =
+        determinant(F) * properties[Layout::initial_volume];
+      return properties[Layout::volume];
+    }
+
+
+
+  } // namespace
+
+
+
+  template <int dim>
+  Transfer<dim>::Transfer(
+    const Parameters<dim>                                      &parameters,
+    const BackgroundGrid<dim>                                  &grid,
+    const std::vector<GrainInfo<dim>>                          &grains,
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+    : parameters(parameters)
+    , grid(grid)
+    , grains(grains)
+    , materials(materials)
+    , field_of_grain(grains.size())
+    , field_is_rigid(grains.size(), false)
+  {
+    int shared_field = -1;
+    for (unsigned int g = 0; g < grains.size(); ++g)
+      {
+        field_of_grain[g] = g;
+        field_is_rigid[g] = grains[g].rigid;
+        if (parameters.contact.model == ContactModel::none && !grains[g].rigid)
+          {
+            if (shared_field < 0)
+              shared_field = g;
+            field_of_grain[g] = shared_field;
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::reinit(const Particles::ParticleHandler<dim> &particle_handler)
+  {
+    cache.reinit(grid, particle_handler, field_of_grain);
+    layout.reinit(cache, grid);
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::particles_to_grid(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    VectorType                            *masses,
+    VectorType                            &momenta,
+    VectorType                            *mass_gradients) const
+  {
+    using Layout = MaterialPointLayout<dim>;
+    if (masses != nullptr)
+      layout.reinit_vector(*masses, 1);
+    layout.reinit_vector(momenta, dim);
+    if (mass_gradients != nullptr)
+      layout.reinit_vector(*mass_gradients, dim);
+
+    for_each_particle(
+      particle_handler, [&](const std::size_t p, const auto &particle) {
+        const auto         properties = particle->get_properties();
+        const double       mass       = properties[Layout::mass];
+        const unsigned int offset     = p * nodes_per_particle;
+        for (unsigned int v = 0; v < nodes_per_particle; ++v)
+          {
+            const unsigned int    slot     = cache.slots[offset + v];
+            const double          shape    = cache.shape_values[offset + v];
+            const Tensor<1, dim> &gradient = cache.shape_gradients[offset + v];
+            if (masses != nullptr)
+              masses->local_element(slot) += mass * shape;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                momenta.local_element(slot * dim + d) +=
+                  mass * shape * properties[Layout::velocity + d];
+                if (mass_gradients != nullptr)
+                  mass_gradients->local_element(slot * dim + d) +=
+                    mass * gradient[d];
+              }
+          }
+      });
+    // Sums at ghost slots go to their owners.
+    if (masses != nullptr)
+      masses->compress(VectorOperation::add);
+    momenta.compress(VectorOperation::add);
+    if (mass_gradients != nullptr)
+      mass_gradients->compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::velocities_from_momenta(const VectorType &masses,
+                                         const VectorType &momenta,
+                                         VectorType       &velocities) const
+  {
+    // Owned slots; ghost slots get their values from the owner when a
+    // particle loop needs them.
+    layout.reinit_vector(velocities, dim);
+    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
+      {
+        const double mass = masses.local_element(slot);
+        if (mass > 0.)
+          for (unsigned int d = 0; d < dim; ++d)
+            velocities.local_element(slot * dim + d) =
+              momenta.local_element(slot * dim + d) / mass;
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::compute_forces(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const Tensor<1, dim>                  &gravity,
+    VectorType                            &forces) const
+  {
+    using Layout = MaterialPointLayout<dim>;
+    layout.reinit_vector(forces, dim);
+    for_each_particle(
+      particle_handler, [&](const std::size_t p, const auto &particle) {
+        const auto properties = particle->get_properties();
+        if (grains[Layout::get_grain(properties)].rigid)
+          return;
+        const unsigned int          offset = p * nodes_per_particle;
+        const double                mass   = properties[Layout::mass];
+        const double                volume = properties[Layout::volume];
+        const SymmetricTensor<2, 3> stress = Layout::get_stress(properties);
+        for (unsigned int v = 0; v < nodes_per_particle; ++v)
+          {
+            const unsigned int    slot     = cache.slots[offset + v];
+            const double          shape    = cache.shape_values[offset + v];
+            const Tensor<1, dim> &gradient = cache.shape_gradients[offset + v];
+            for (unsigned int i = 0; i < dim; ++i)
+              {
+                double divergence = 0.;
+                for (unsigned int j = 0; j < dim; ++j)
+                  divergence += stress[i][j] * gradient[j];
+                forces.local_element(slot * dim + i) +=
+                  -volume * divergence + mass * shape * gravity[i];
+              }
+          }
+      });
+    forces.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::update_particle_states(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                &velocities,
+    const double                     dt,
+    double                          &plastic_work,
+    double                          *strain_energy) const
+  {
+    using Layout = MaterialPointLayout<dim>;
+    velocities.update_ghost_values();
+    const double *const values = velocities.begin();
+    for_each_particle(
+      particle_handler, [&](const std::size_t p, auto &particle) {
+        auto               properties = particle->get_properties();
+        const unsigned int grain      = Layout::get_grain(properties);
+        if (grains[grain].rigid)
+          return;
+        // dt L_p = dt sum_i v_i (x) grad S_ip, then the constitutive model
+        // (Cummins & Brackbill eqs. 8-10).
+        Tensor<2, dim> increment = velocity_gradient(p, values);
+        increment *= dt;
+        const ConstitutiveModel<dim> &model =
+          *materials[grains[grain].material];
+        const double old_plastic_strain = properties[Layout::plastic_strain];
+        double       plastic_strain     = old_plastic_strain;
+        const SymmetricTensor<2, 3> stress =
+          model.update_stress(Layout::get_stress(properties),
+                              increment,
+                              plastic_strain);
+        const double volume =
+          store_particle_state(properties, stress, plastic_strain, increment);
+        if (strain_energy != nullptr)
+          *strain_energy += volume * model.strain_energy_density(stress);
+        plastic_work +=
+          volume *
+          model.plastic_work_density(stress,
+                                     plastic_strain - old_plastic_strain);
+      });
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::finish_step(Particles::ParticleHandler<dim> &particle_handler,
+                             StepStatistics                  &statistics)
+  {
+    // Positions are final: drop particles that left through open faces,
+    // and sort only if some particle (on any rank) changed cells; sorting
+    // also sends particles that left this rank's cells to their new owner.
+    statistics.n_removed = particles_to_remove.size();
+    if (!particles_to_remove.empty())
+      {
+        particle_handler.remove_particles(particles_to_remove);
+        particles_to_remove.clear();
+        statistics.sorted = true;
+      }
+    statistics.reduce(grid.get_triangulation().get_communicator());
+    if (statistics.sorted)
+      particle_handler.sort_particles_into_subdomains_and_cells();
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::grid_to_particles(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                &masses,
+    const VectorType                &velocities_new,
+    const VectorType                &velocities_p2g,
+    const VectorType                &position_velocities,
+    const double                     time,
+    const double                     dt,
+    StepStatistics                  &statistics)
+  {
+    using Layout                        = MaterialPointLayout<dim>;
+    constexpr unsigned int per_particle = nodes_per_particle;
+    const double           flip  = parameters.time_stepping.flip_fraction;
+    const Tensor<1, dim>  &h     = grid.cell_size();
+    const Point<dim>      &lower = grid.lower_corner();
+    const Point<dim>      &upper = grid.upper_corner();
+    Vector<double>         prescribed(dim);
+    double                 max_speed_square        = 0.;
+    double                 particle_kinetic_change = 0.;
+    std::string            error;
+    velocities_new.update_ghost_values();
+    velocities_p2g.update_ghost_values();
+    position_velocities.update_ghost_values();
+
+    for_each_particle(
+      particle_handler, [&](const std::size_t p, auto &particle) {
+        const unsigned int offset = p * per_particle;
+        if (!error.empty())
+          return;
+        auto               properties   = particle->get_properties();
+        const unsigned int grain        = Layout::get_grain(properties);
+        const Point<dim>   old_position = particle->get_location();
+        Point<dim>         new_position;
+        Tensor<1, dim>     new_velocity;
+
+        if (grains[grain].rigid)
+          {
+            // Rigid grains follow their prescribed velocity (midpoint rule).
+            FunctionParser<dim> &function = *grains[grain].prescribed_velocity;
+            function.set_time(time + 0.5 * dt);
+            function.vector_value(old_position, prescribed);
+            for (unsigned int d = 0; d < dim; ++d)
+              new_position[d] = old_position[d] + dt * prescribed[d];
+            function.set_time(time + dt);
+            function.vector_value(new_position, prescribed);
+            for (unsigned int d = 0; d < dim; ++d)
+              new_velocity[d] = prescribed[d];
+          }
+        else
+          {
+            // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC:
+            // v_p = sum S v^new; x_p += dt sum_i S_ip v_i (v^L explicit,
+            // v^theta implicit).
+            Tensor<1, dim> increment, interpolated, moved;
+            for (unsigned int v = 0; v < per_particle; ++v)
+              {
+                const unsigned int slot  = cache.slots[offset + v];
+                const double       shape = cache.shape_values[offset + v];
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const double v_new =
+                      velocities_new.local_element(slot * dim + d);
+                    interpolated[d] += shape * v_new;
+                    moved[d] +=
+                      shape * position_velocities.local_element(slot * dim + d);
+                    increment[d] +=
+                      shape *
+                      (v_new - velocities_p2g.local_element(slot * dim + d));
+                  }
+              }
+            const Tensor<1, dim> old_velocity =
+              Layout::get_velocity(properties);
+            new_velocity =
+              flip * (old_velocity + increment) + (1. - flip) * interpolated;
+            new_position = old_position + dt * moved;
+            particle_kinetic_change +=
+              0.5 * properties[Layout::mass] *
+              (new_velocity.norm_square() - old_velocity.norm_square());
+          }
+        Layout::set_velocity(new_velocity, properties);
+        max_speed_square =
+          std::max(max_speed_square, new_velocity.norm_square());
+
+        // Leaving the box: removed through an open face. A deformable
+        // point that the interpolated velocity carries less than half a
+        // cell through a closed (rigid) face is put back on the face: the
+        // wall constrains the nodes, not the interpolation between them.
+        // Anything more is an error.
+        for (unsigned int d = 0; d < dim; ++d)
+          if (new_position[d] < lower[d] || new_position[d] > upper[d])
+            {
+              const unsigned int face =
+                2 * d + (new_position[d] > upper[d] ? 1 : 0);
+              const BoundaryCondition &condition =
+                grid.boundary_condition(face);
+              const double overshoot = std::max(lower[d] - new_position[d],
+                                                new_position[d] - upper[d]);
+              if (condition.type != BoundaryType::open &&
+                  !grains[grain].rigid && overshoot < 0.5 * h[d])
+                {
+                  new_position[d] = (face % 2 == 0) ? lower[d] : upper[d];
+                  ++statistics.n_held_at_walls;
+                  continue;
+                }
+              if (condition.type == BoundaryType::open)
+                {
+                  particles_to_remove.push_back(particle);
+                  return;
+                }
+              std::ostringstream message;
+              message << "particle " << particle->get_id() << " of grain "
+                      << grain + 1 << " (" << parameters.grains[grain].source
+                      << ") left the background grid through the closed face "
+                      << face_names[face] << " ("
+                      << boundary_type_names[static_cast<int>(condition.type)]
+                      << ") at position (";
+              for (unsigned int e = 0; e < dim; ++e)
+                message << (e > 0 ? ", " : "") << new_position[e];
+              message << ") at time " << time + dt
+                      << ". Enlarge the grid (Background grid/Lower corner, "
+                         "Upper corner) or make that face open (Background "
+                         "grid/Boundary conditions).";
+              error = message.str();
+              return;
+            }
+
+        // Stay in the cell if possible: then no sort is needed.
+        Point<dim> reference = particle->get_reference_location();
+        bool       inside    = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            reference[d] += (new_position[d] - old_position[d]) / h[d];
+            inside = inside && reference[d] >= 0. && reference[d] <= 1.;
+          }
+        particle->set_location(new_position);
+        if (inside)
+          particle->set_reference_location(reference);
+        else
+          statistics.sorted = true;
+      });
+    throw_on_all_ranks(error, grid.get_triangulation().get_communicator());
+    statistics.max_speed = std::sqrt(max_speed_square);
+
+    double grid_kinetic_change = 0.;
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      if (!field_is_rigid[layout.field(s)])
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const unsigned int k = s * dim + d;
+            grid_kinetic_change += 0.5 * masses.local_element(s) *
+                                   (velocities_new.local_element(k) *
+                                      velocities_new.local_element(k) -
+                                    velocities_p2g.local_element(k) *
+                                      velocities_p2g.local_element(k));
+          }
+    statistics.transfer_energy_change =
+      particle_kinetic_change - grid_kinetic_change;
+  }
+
+
+
+  template class Transfer<2>;
+  template class Transfer<3>;
+} // namespace grainmpm
