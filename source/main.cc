@@ -3,7 +3,7 @@
 
 // grainmpm: multi-grain Material Point Method after Cummins & Brackbill.
 // Usage: grainmpm case.prm | --print-parameters [2|3] |
-//        --check-parameters case.prm | --help
+//        --check-parameters case.prm | --version | --help
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameters.h>
@@ -26,6 +26,8 @@ namespace
            "only\n"
         << "       grainmpm --print-parameters [2|3]      print every "
            "parameter with its documentation\n"
+        << "       grainmpm --version                     print the "
+           "versions of grainmpm and deal.II\n"
         << "       grainmpm --help\n";
   }
 
@@ -69,6 +71,13 @@ main(int argc, char *argv[])
         {
           print_usage(arguments.empty() ? std::cerr : std::cout);
           return arguments.empty() ? 1 : 0;
+        }
+      if (arguments[0] == "--version")
+        {
+          if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cout << "grainmpm " << GRAINMPM_VERSION << " (deal.II "
+                      << DEAL_II_PACKAGE_VERSION << ")" << std::endl;
+          return 0;
         }
       if (arguments[0] == "--print-parameters")
         {

@@ -8,31 +8,34 @@
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/postprocess/checkpoint_manager.h>
 #include <grainmpm/postprocess/energy_history.h>
 #include <grainmpm/postprocess/grain_history.h>
+#include <grainmpm/postprocess/output_schedule.h>
 #include <grainmpm/postprocess/output_writer.h>
-#include <grainmpm/time_integration/explicit_leapfrog.h>
-#include <grainmpm/time_integration/implicit_theta.h>
+#include <grainmpm/postprocess/run_summary.h>
+#include <grainmpm/time_integration/time_integrator.h>
+#include <grainmpm/time_integration/time_step_controller.h>
 
 #include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/discrete_time.h>
 #include <deal.II/base/timer.h>
 
 #include <deal.II/particles/particle_handler.h>
 
-#include <chrono>
-#include <limits>
+#include <boost/serialization/access.hpp>
+
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * A grainmpm run: owns the grid, the material points, the materials, the
-   * time stepper and the writers; run() reads like the algorithm of
-   * DESIGN.md section 2.
+   * time integrator and the objects around the time loop (time step
+   * controller, output and checkpoint schedule, checkpoints, writers, run
+   * summary); run() reads like the algorithm.
    */
   template <int dim>
   class Simulator
@@ -53,17 +56,46 @@ namespace grainmpm
     run();
 
   private:
-    /** The time loop of run(). */
+    /**
+     * Grains and material points (or those of the checkpoint the run
+     * resumes from), the time integrator, the writers; the first output
+     * of a new run. Sets where the time loop starts.
+     */
     void
-    advance_to_end_time();
+    setup();
 
-    /** Time step from the CFL condition or the fixed value. */
-    double
-    compute_time_step(const double max_speed) const;
+    /**
+     * One step from the current time of @p time, retried with smaller
+     * steps as the failure policy allows; throws InputError (after writing
+     * output) when it allows no more.
+     */
+    StepStatistics
+    advance_one_step(DiscreteTime &time);
 
-    /** Particles, grid, .pvd records, grains.csv and the progress line. */
+    /**
+     * The energies after step @p step (the time of @p time) and the
+     * histories; @p statistics of the step into the run summary.
+     */
     void
-    write_output(const unsigned int step, const double time, const double dt);
+    record_step(const unsigned int    step,
+                const DiscreteTime   &time,
+                const StepStatistics &statistics);
+
+    /** Particles, grid, grains.csv and the progress line. */
+    void
+    write_output(const unsigned int step,
+                 const double       time,
+                 const double       dt,
+                 const unsigned int index);
+
+    /**
+     * Repartition at `Steps between repartitioning` and before a
+     * checkpoint, and write the checkpoints the schedule asks for, after
+     * step @p step.
+     */
+    void
+    repartition_and_checkpoint(const unsigned int  step,
+                               const DiscreteTime &time);
 
     /**
      * With more than one MPI rank and Load balancing/Steps between
@@ -73,20 +105,23 @@ namespace grainmpm
     void
     balance_load();
 
-    /**
-     * Write checkpoint-NNNNNN (Checkpoint subsection): the triangulation
-     * with the material points, and the state below.
-     */
+    /** The final summary after @p n_steps steps to @p time. */
     void
-    write_checkpoint();
+    print_summary(const unsigned int n_steps, const double time);
 
-    /** Read or write the scalar state of the run with @p archive. */
+    /**
+     * Read or write the state of the run with @p archive: where the time
+     * loop starts, the time step controller, the schedule and the summary.
+     */
     template <class Archive>
     void
-    serialize_state(Archive &archive);
+    serialize(Archive &archive, const unsigned int version);
+
+    friend class boost::serialization::access;
 
     const Parameters<dim> &parameters;
     const MPI_Comm         communicator;
+    const bool             implicit;
     ConditionalOStream     pcout;
     TimerOutput            timer;
 
@@ -95,58 +130,24 @@ namespace grainmpm
     std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
     std::vector<GrainInfo<dim>>                          grains;
     std::unique_ptr<TimeIntegrator<dim>>                 stepper;
+    std::unique_ptr<TimeStepController>                  time_step_controller;
+    OutputSchedule                                       schedule;
+    std::unique_ptr<CheckpointManager<dim>>              checkpoints;
     std::unique_ptr<OutputWriter<dim>>                   output_writer;
     std::unique_ptr<EnergyHistory<dim>>                  energy_history;
     std::unique_ptr<GrainHistory<dim>>                   grain_history;
+    RunSummary<dim>                                      summary;
 
-    unsigned int          n_outputs = 0;
-    types::particle_index n_removed = 0;
     /** Points the handler lost on this rank (counted, never expected). */
-    types::particle_index n_lost          = 0;
-    types::particle_index n_held_at_walls = 0;
-    EnergySummary<dim>    initial_energy;
-    EnergySummary<dim>    current_energy;
-    double                minimum_energy = 0.;
-    double                maximum_energy = 0.;
-    /** Sum of the steps' grid energy changes (StepStatistics). */
-    double grid_energy_change = 0.;
-    /** The energy ledger since the start. */
-    EnergyLedger ledger;
-    /** Largest |balance residual| and largest kinetic + elastic energy. */
-    double largest_balance         = 0.;
-    double largest_kinetic_elastic = 0.;
-    /** Largest equivalent plastic strain at the end. */
-    double largest_plastic_strain = 0.;
-    /** Solver counts of the implicit scheme over the run. */
-    struct
-    {
-      unsigned long newton_iterations     = 0;
-      unsigned long linear_iterations     = 0;
-      unsigned long residual_evaluations  = 0;
-      unsigned long status_changes        = 0;
-      unsigned int  max_newton_iterations = 0;
-      unsigned int  rejected              = 0;
-      double        smallest_step         = std::numeric_limits<double>::max();
-    } implicit_totals;
-    /** sum_p m_p |v_p| at t = 0, the scale of momentum errors. */
-    double initial_momentum_scale = 0.;
+    types::particle_index n_lost = 0;
 
     /**
      * Where the time loop starts (0, or a checkpoint): time, desired next
-     * step, step number; the next output time, the failure policy's step
-     * limit and easy steps, steps with contact, the smallest time step.
+     * step, step number.
      */
-    double       start_time        = 0.;
-    double       next_step_size    = 0.;
-    unsigned int step_offset       = 0;
-    double       next_output       = 0.;
-    double       step_limit        = 0.;
-    unsigned int easy_steps        = 0;
-    unsigned int n_contact_steps   = 0;
-    double       minimum_time_step = 0.;
-    /** Wall-clock time of the last checkpoint, and the ones kept. */
-    std::chrono::steady_clock::time_point last_checkpoint;
-    std::vector<std::string>              checkpoints;
+    double       start_time     = 0.;
+    double       next_step_size = 0.;
+    unsigned int step_offset    = 0;
   };
 
   /**

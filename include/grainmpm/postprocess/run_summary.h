@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_postprocess_run_summary_h
+#define grainmpm_postprocess_run_summary_h
+
+#include <grainmpm/base/step_statistics.h>
+#include <grainmpm/postprocess/energy_history.h>
+
+#include <limits>
+#include <ostream>
+
+namespace grainmpm
+{
+  /**
+   * What a run reports when it ends: the energies relative to the initial
+   * total energy (or to the largest kinetic plus elastic energy for a run
+   * that starts at rest) with their extremes, the energy ledger and its
+   * largest balance residual, the counts of contact steps and of removed
+   * and held points, the implicit solver totals and the momentum change.
+   * Collects them step by step; its state is written to checkpoints by
+   * serialize().
+   */
+  template <int dim>
+  class RunSummary
+  {
+  public:
+    /** @p implicit: whether to collect and print the solver totals. */
+    explicit RunSummary(const bool implicit);
+
+    /**
+     * Start from the @p initial energies and the momentum scale
+     * @p momentum_scale = sum_p m_p |v_p| at t = 0.
+     */
+    void
+    start(const EnergySummary<dim> &initial, const double momentum_scale);
+
+    /** One attempt of a step, accepted or rejected. */
+    void
+    add_attempt(const StepStatistics &statistics);
+
+    /** An accepted step. */
+    void
+    add_step(const StepStatistics &statistics);
+
+    /** The energies after an accepted step. */
+    void
+    add_energies(const EnergySummary<dim> &current);
+
+    /** The energy ledger since the start. */
+    const EnergyLedger &
+    get_ledger() const
+    {
+      return ledger;
+    }
+
+    const EnergySummary<dim> &
+    get_initial_energies() const
+    {
+      return initial_energy;
+    }
+
+    const EnergySummary<dim> &
+    get_current_energies() const
+    {
+      return current_energy;
+    }
+
+    /**
+     * Print the summary of a run that took @p n_steps steps to @p time,
+     * lost @p n_lost points in the particle handler and has
+     * @p n_points points left, the largest of which equivalent plastic
+     * strain is @p largest_plastic_strain; @p smallest_step_tried is the
+     * smallest step the failure policy tried.
+     */
+    void
+    print(std::ostream               &out,
+          const unsigned int          n_steps,
+          const double                time,
+          const types::particle_index n_lost,
+          const types::particle_index n_points,
+          const double                largest_plastic_strain,
+          const double                smallest_step_tried) const;
+
+    /** Read or write the state with @p archive. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int /*version*/)
+    {
+      archive &n_contact_steps &n_removed                     &n_held_at_walls;
+      archive &initial_energy &current_energy &minimum_energy &maximum_energy;
+      archive &grid_energy_change &ledger &largest_balance
+        &largest_kinetic_elastic &initial_momentum_scale;
+      archive &newton_iterations &linear_iterations &residual_evaluations
+        &status_changes &max_newton_iterations &rejected;
+    }
+
+  private:
+    const bool implicit;
+
+    unsigned int          n_contact_steps = 0;
+    types::particle_index n_removed       = 0;
+    types::particle_index n_held_at_walls = 0;
+    EnergySummary<dim>    initial_energy;
+    EnergySummary<dim>    current_energy;
+    double                minimum_energy = 0.;
+    double                maximum_energy = 0.;
+    /** Sum of the steps' grid energy changes (implicit). */
+    double       grid_energy_change = 0.;
+    EnergyLedger ledger;
+    /** Largest |balance residual| and largest kinetic + elastic energy. */
+    double largest_balance         = 0.;
+    double largest_kinetic_elastic = 0.;
+    /** sum_p m_p |v_p| at t = 0, the scale of momentum errors. */
+    double initial_momentum_scale = 0.;
+
+    /** Solver counts of the implicit scheme over the run. */
+    unsigned long newton_iterations     = 0;
+    unsigned long linear_iterations     = 0;
+    unsigned long residual_evaluations  = 0;
+    unsigned long status_changes        = 0;
+    unsigned int  max_newton_iterations = 0;
+    unsigned int  rejected              = 0;
+  };
+} // namespace grainmpm
+
+#endif

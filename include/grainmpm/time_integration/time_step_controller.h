@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_time_integration_time_step_controller_h
+#define grainmpm_time_integration_time_step_controller_h
+
+#include <grainmpm/base/parameters.h>
+
+#include <limits>
+
+namespace grainmpm
+{
+  /**
+   * The size of the time steps: from the CFL condition
+   * dt = CFL h_min / (c_max + |v|_max) or the fixed `Time step`, and the
+   * failure policy of the implicit scheme: a rejected step is retried with
+   * half the step (down to `Minimum time step`), and a cut step grows back
+   * by a factor 2 after `Steps before growth` easy steps (at most half the
+   * Newton iterations allowed). Its state is written to checkpoints by
+   * serialize().
+   */
+  class TimeStepController
+  {
+  public:
+    /**
+     * @p minimum_cell_size and @p wave_speed (the largest dilatational
+     * wave speed) set the CFL step; @p max_newton_iterations tells an easy
+     * step.
+     */
+    TimeStepController(const TimeSteppingParameters &parameters,
+                       const unsigned int            max_newton_iterations,
+                       const double                  minimum_cell_size,
+                       const double                  wave_speed);
+
+    /**
+     * The first step of a run whose particles move at most at
+     * @p max_speed; also sets the minimum step (`Minimum time step`, or
+     * 1/1024 of the first step).
+     */
+    double
+    first_step(const double max_speed);
+
+    /**
+     * A step of size @p failed_step was rejected: halve it. Returns false
+     * if no retry is allowed (adaptive time stepping off, or the half step
+     * below the minimum step).
+     */
+    bool
+    reject(const double failed_step);
+
+    /** The step to retry a rejected step with. */
+    double
+    retry_step() const
+    {
+      return step_limit;
+    }
+
+    /**
+     * An implicit step was accepted after @p newton_iterations: count it
+     * towards growing a cut step back.
+     */
+    void
+    accept(const unsigned int newton_iterations);
+
+    /**
+     * The step after an accepted one in which particles moved at most at
+     * @p max_speed: the CFL (or fixed) step, limited by a cut step as long
+     * as that is smaller.
+     */
+    double
+    next_step(const double max_speed);
+
+    /** The smallest step at which a retry was made (0 if none). */
+    double
+    smallest_step_tried() const
+    {
+      return smallest_step < std::numeric_limits<double>::max() ?
+               smallest_step :
+               0.;
+    }
+
+    /** The smallest step the failure policy may try. */
+    double
+    get_minimum_step() const
+    {
+      return minimum_step;
+    }
+
+    /** Read or write the state with @p archive. */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int /*version*/)
+    {
+      archive &minimum_step &step_limit &easy_steps &smallest_step;
+    }
+
+  private:
+    /** The CFL (or fixed) step for particles moving at @p max_speed. */
+    double
+    cfl_step(const double max_speed) const;
+
+    const TimeSteppingParameters &parameters;
+    const unsigned int            max_newton_iterations;
+    const double                  minimum_cell_size;
+    const double                  wave_speed;
+
+    double minimum_step = 0.;
+    /** A cut step (0 if none). */
+    double       step_limit    = 0.;
+    unsigned int easy_steps    = 0;
+    double       smallest_step = std::numeric_limits<double>::max();
+  };
+} // namespace grainmpm
+
+#endif

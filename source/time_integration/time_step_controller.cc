@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/time_integration/time_step_controller.h>
+
+#include <algorithm>
+
+namespace grainmpm
+{
+  TimeStepController::TimeStepController(
+    const TimeSteppingParameters &parameters,
+    const unsigned int            max_newton_iterations,
+    const double                  minimum_cell_size,
+    const double                  wave_speed)
+    : parameters(parameters)
+    , max_newton_iterations(max_newton_iterations)
+    , minimum_cell_size(minimum_cell_size)
+    , wave_speed(wave_speed)
+  {}
+
+
+
+  double
+  TimeStepController::cfl_step(const double max_speed) const
+  {
+    if (parameters.time_step > 0.)
+      return parameters.time_step;
+    return parameters.cfl_number * minimum_cell_size / (wave_speed + max_speed);
+  }
+
+
+
+  double
+  TimeStepController::first_step(const double max_speed)
+  {
+    const double step = cfl_step(max_speed);
+    minimum_step      = parameters.minimum_time_step > 0. ?
+                          parameters.minimum_time_step :
+                          step / 1024.;
+    return step;
+  }
+
+
+
+  bool
+  TimeStepController::reject(const double failed_step)
+  {
+    if (!parameters.adaptive_time_stepping || 0.5 * failed_step < minimum_step)
+      return false;
+    step_limit    = 0.5 * failed_step;
+    easy_steps    = 0;
+    smallest_step = std::min(smallest_step, step_limit);
+    return true;
+  }
+
+
+
+  void
+  TimeStepController::accept(const unsigned int newton_iterations)
+  {
+    if (step_limit > 0. && 2 * newton_iterations <= max_newton_iterations)
+      if (++easy_steps >= parameters.steps_before_growth)
+        {
+          step_limit *= 2.;
+          easy_steps = 0;
+        }
+  }
+
+
+
+  double
+  TimeStepController::next_step(const double max_speed)
+  {
+    double step = cfl_step(max_speed);
+    if (step_limit > 0. && step_limit < step)
+      step = step_limit;
+    else
+      step_limit = 0.;
+    return step;
+  }
+} // namespace grainmpm
