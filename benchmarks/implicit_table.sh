@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
 #
-# The implicit-solver table of issue 3, from the shipped cases: for the
-# single grain between walls (prm/single_grain_rebound_implicit.prm) at
+# The implicit-solver table of doc/validation.md, from the shipped cases:
+# for the single grain between walls (prm/single_grain_rebound_implicit.prm) at
 # CFL 1, 2.5, 5 and 10, and the two-disk collision (prm/two_disks_implicit.prm)
 # at CFL 2.5, with the probed Jacobi preconditioner and without:
 # Newton iterations per step, Krylov (GMRES) iterations per Newton

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
 #
-# Parallel throughput and memory of the large 2D case (issue 5):
+# Parallel throughput and memory of the large 2D case (doc/validation.md,
+# Parallel runs):
 #   prm/ten_thousand_grains.prm: 10,000 disks, about 1,012,000 points;
 #   the same grid with 10 rectangular grains of the same total area (about
 #   1,013,000 points): memory must not grow with grains x nodes.

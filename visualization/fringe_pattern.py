@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
-"""Dark-field isochromatic fringe picture of a grainmpm run (seed Fig. 3).
+"""Dark-field isochromatic fringe picture of a grainmpm run (as in Fig. 3 of
+Cummins & Brackbill, LA-UR-01-4102).
 
 Reads particles.pvd, takes the particle field fringe_order
 N = thickness (sigma_1 - sigma_2) / material fringe value (written for

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
-"""Energy and momentum histories of grainmpm runs, side by side (seed Fig. 2).
+"""Energy and momentum histories of grainmpm runs, side by side (as in Fig. 2
+of Cummins & Brackbill, LA-UR-01-4102).
 
 One column per energy.csv (for example the explicit and the implicit run of
 a case); rows: total, kinetic and elastic energy; momentum; the energy

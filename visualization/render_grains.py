@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
-"""Grain positions of a grainmpm run at chosen times, side by side (seed
-Fig. 1).
+"""Grain positions of a grainmpm run at chosen times, side by side (as in
+Fig. 1 of Cummins & Brackbill, LA-UR-01-4102).
 
 Reads particles.pvd and draws every material point as a disk of its own
 size, coloured by its grain, one panel per requested time, all panels on

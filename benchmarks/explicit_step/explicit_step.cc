@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Explicit-step benchmark (DESIGN.md section 9): a block of elastic material
-// filling [0.25, 0.75]^2 of a 512 x 512 grid with 4 x 4 points per cell
-// (1,048,576 material points), advanced by grainmpm's ExplicitLeapfrog,
-// next to the plain-array kernel of the same work in the same process.
+// Explicit-step benchmark (doc/validation.md, Performance): a block of
+// elastic material filling [0.25, 0.75]^2 of a 512 x 512 grid with 4 x 4
+// points per cell (1,048,576 material points), advanced by grainmpm's
+// ExplicitLeapfrog, next to the plain-array kernel of the same work in the
+// same process.
 // Prints ns/particle/step of both and their ratio.
 //
 // Usage: explicit_step [n_cells=512] [particles_per_direction=4] [steps=10]

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Implicit residual benchmark (DESIGN.md section 9): the block of the
-// explicit benchmark (1,048,576 material points on 512^2 cells, 4 x 4 per
-// cell) with a shear velocity field, one implicit theta = 1/2 step at
-// CFL 2. Prints
+// Implicit residual benchmark (doc/validation.md, Solver cost): the block
+// of the explicit benchmark (1,048,576 material points on 512^2 cells,
+// 4 x 4 per cell) with a shear velocity field, one implicit theta = 1/2
+// step at CFL 2. Prints
 //  - ns/particle of one residual evaluation of ThetaResidual, next to a
 //    plain-array residual of the same work (the same cached shape function
 //    gradients and slots in flat arrays, the same Jaumann linear elastic

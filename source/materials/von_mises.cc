@@ -60,7 +60,7 @@ namespace grainmpm
     plastic_increment  = f_trial / (3. * mu + hardening_modulus);
     const double beta  = 1. - 3. * mu * plastic_increment / q_trial;
     const double kappa = lambda_3d + 2. * mu / 3.;
-    // The consistent tangent (physics.md 6.3), its zz-zz component, with
+    // The consistent tangent (Simo & Hughes 1998), its zz-zz component, with
     // N = s / |s| (unit Frobenius norm).
     const double n_zz = s_trial[2][2] / s_trial.norm();
     const double gamma_bar =

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Contact normals of a half-plane grain (reference/physics.md 3.3): the
+// Contact normals of a half-plane grain (doc/theory.md section 5.1): the
 // mass gradient sum_p m_p grad S_ip of a grain filling x < x_s (x_s in the
 // middle of a cell) points out of the grain (+x) at the nodes at and just
 // outside its surface; with a second grain filling x > x_s,

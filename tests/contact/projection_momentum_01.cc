@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::project_node on random nodes (reference/physics.md 3.5,
-// 3.6, V8): momentum is conserved for two grains with antiparallel normals
+// GrainContact::project_node on random nodes (doc/theory.md section 5.2):
+// momentum is conserved for two grains with antiparallel normals
 // and for three grains, approaching grains end with no normal relative
 // velocity (two grains), Coulomb friction sticks iff mu D >= C and
 // otherwise reduces the slip by exactly mu D, receding grains are left

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::project_node on the worked example of reference/physics.md
-// 3.6: two grains at one node, slip with mu = 0.05, stick with mu = 0.2,
-// and the frictionless model.
+// GrainContact::project_node on a worked example (doc/theory.md section
+// 5.2): two grains at one node, m_a = 1, v_a = (1, 0.2), n_a = (1, 0) and
+// m_b = 3, v_b = (-1, 0), n_b = (-1, 0), so v_cm = (-0.5, 0.05). With
+// mu = 0.05 both slip (D_a = 1.5, C_a = 0.15): v_a = (-0.5, 0.125),
+// v_b = (-0.5, 0.025); with mu = 0.2 both stick at v_cm; frictionless,
+// v_a = (-0.5, 0.2), v_b = (-0.5, 0). Momentum (-2, 0.2) is unchanged.
 
 #include <grainmpm/contact/grain_contact.h>
 

@@ -2,8 +2,8 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 // GrainContact::project_node leaves receding (and purely sliding) grains
-// bit-for-bit unchanged (reference/physics.md 3.4, 3.8), and treats a rigid
-// partner as infinite mass (3.9): the deformable grain gets the rigid
+// bit-for-bit unchanged (doc/theory.md section 5.2), and treats a rigid
+// partner as infinite mass: the deformable grain gets the rigid
 // velocity's normal component (and friction relative to it), the rigid
 // velocity is not changed, whatever the rigid field's mass.
 

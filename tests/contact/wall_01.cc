@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::apply_wall (reference/physics.md 2.5): free slip removes
+// GrainContact::apply_wall (doc/theory.md section 6.1): free slip removes
 // only an approaching normal component, friction sticks iff mu D >= C and
 // otherwise reduces the slip by mu D, no slip zeroes the velocity, open
 // does nothing; checked on every face of the box.

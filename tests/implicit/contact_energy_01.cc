@@ -164,7 +164,7 @@ end
       70,
       1e-3);
 
-  // (b) The two disks of prm/two_disks_implicit.prm (V3), dt = 0.096.
+  // (b) The two disks of prm/two_disks_implicit.prm, dt = 0.096.
   run("two_disks",
       unit_square_and_material(20) + two_disks_parameters() + R"(
 subsection Time stepping

@@ -69,7 +69,8 @@ constexpr double block_lambda = 1000. * 0.3 / (1.3 * 0.4);
 constexpr double block_mu     = 1000. / 2.6;
 
 /**
- * The two disks of prm/two_disks_implicit.prm (reference/physics.md V3):
+ * The two disks of prm/two_disks_implicit.prm (the two-disk collision of
+ * Sulsky, Zhou & Schreyer 1995):
  * rho = 1000 and the two grains, the second centred at (0.8,
  * @p grain_2_y) (0.8: head-on), approaching at (0.1, 0.1) each.
  */

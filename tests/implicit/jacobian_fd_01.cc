@@ -3,7 +3,7 @@
 
 // The finite-difference Jacobian-vector product of the implicit residual
 // (eq. 15) equals the exact action of the Jacobian M^-1 (M + theta^2 dt^2
-// K) (reference/physics.md section 4.7) on random vectors, for an
+// K) (doc/theory.md section 11) on random vectors, for an
 // unstressed elastic grain without contact, with both differencing steps;
 // K is assembled independently in the test. Also: the residual is a pure
 // function (two evaluations are bit-identical and leave the particles

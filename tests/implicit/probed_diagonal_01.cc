@@ -2,8 +2,9 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 // The diagonal of the Jacobian probed with 18 coloured residual
-// evaluations (reference/physics.md section 5.5):
-// 1. without contact it equals the analytic diagonal of section 4.7,
+// evaluations (doc/theory.md section 11):
+// 1. without contact it equals the analytic diagonal of an unstressed
+//    elastic grain,
 //    1 + theta^2 dt^2 sum_p V_p [(lambda + 2 mu) G_d^2 + mu G_e^2] / m;
 // 2. with two grains in frictional contact it equals the diagonal of the
 //    simplified Jacobian probed one unknown at a time (so the colouring

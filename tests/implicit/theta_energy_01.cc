@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Energy of the theta scheme (reference/physics.md section 4.6): a free
+// Energy of the theta scheme (doc/theory.md section 9.6): a free
 // elastic disk vibrating from a pure-shear velocity field (isochoric, so
 // that the volume change of the hypoelastic model is only second order),
 // 40 steps at CFL 2. With

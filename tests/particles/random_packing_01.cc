@@ -8,7 +8,7 @@
 //   one within round-off): the packing is deposited, not sprinkled.
 // - The radii span the requested range; the packing fraction of the filled
 //   part of the box is printed (rounded).
-// - The same seed gives the same packing, another seed another one.
+// - The same Seed gives the same packing, another Seed another one.
 // - write_grain_list() then 'Grains/Grain list file' reads the same grains
 //   back (through a whole parameter file).
 // - A box too small for the grains stops with a message naming

@@ -28,8 +28,8 @@ namespace grainmpm
    * The background grid of the material point method: a box of equal,
    * axis-aligned cells on a `parallel::distributed::Triangulation`, the
    * Q1 shape functions of an `FE_Q<dim>(1)` on a `DoFHandler`, and the
-   * flat tables the transfers need (DESIGN.md section 9): the node numbers
-   * of each active cell, and for each node the box faces it lies on.
+   * flat tables the transfers need: the node numbers of each active cell,
+   * and for each node the box faces it lies on.
    *
    * Nodes are numbered like the entries of a ghosted
    * `LinearAlgebra::distributed::Vector` on the DoFs: the locally owned

@@ -19,7 +19,7 @@ namespace grainmpm
    * The interface of a constitutive model: a pure function from the old
    * stress, the history and the increment of the displacement gradient
    * over a step (dt times the velocity gradient) to the new stress and
-   * history (DESIGN.md section 5). Stresses are three-dimensional in every
+   * history (doc/theory.md section 13). Stresses are three-dimensional in every
    * dimension so that plane strain keeps sigma_zz.
    */
   template <int dim>

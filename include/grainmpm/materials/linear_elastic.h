@@ -10,7 +10,7 @@ namespace grainmpm
 {
   /**
    * Hypoelastic isotropic linear elasticity with the Jaumann-rotated old
-   * stress (reference/physics.md section 6.1):
+   * stress (doc/theory.md section 13):
    * sigma^{n+1} = sigma^n + dW sigma^n - sigma^n dW + lambda tr(de) I
    * + 2 mu de, with de = sym(dt grad v), dW = skew(dt grad v). In 2D the
    * plane-strain increment has de_zz = 0 (sigma_zz follows), the

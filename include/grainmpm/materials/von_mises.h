@@ -11,7 +11,7 @@ namespace grainmpm
   /**
    * Elastic-plastic material: hypoelastic (Jaumann-rotated) isotropic
    * elasticity with von Mises (J2) plasticity and linear isotropic
-   * hardening, updated by radial return (reference/physics.md section 6.2,
+   * hardening, updated by radial return (doc/theory.md section 13;
    * Simo & Hughes 1998, box 3.1; the small-strain rate form of Sulsky,
    * Zhou & Schreyer 1995):
    *

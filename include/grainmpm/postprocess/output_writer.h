@@ -36,7 +36,7 @@ namespace grainmpm
   von_mises_stress(const SymmetricTensor<2, 3> &stress);
 
   /**
-   * Writes the ParaView files of a run (DESIGN.md section 7):
+   * Writes the ParaView files of a run (README, Running):
    * `particles.pvd` with `particles/particles_NNNNN.vtu` (position, grain,
    * velocity, stress tensor, principal stress difference, photoelastic
    * fringe order, von Mises stress, volume, plastic strain) and `grid.pvd` with

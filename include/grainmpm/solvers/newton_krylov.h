@@ -79,13 +79,14 @@ namespace grainmpm
 
 
   /**
-   * Inexact Newton with a matrix-free Krylov solver (reference/physics.md
-   * section 5, DESIGN.md section 5): J dx = -R solved by deal.II's
-   * SolverGMRES with right preconditioning (eq. 17) or SolverFGMRES to the
-   * relative tolerance eta_k (constant or Eisenstat-Walker choice 2), J z
-   * by the finite difference (R(x + eps z) - R(x)) / eps (eq. 15), weighted
-   * Jacobi with the probed diagonal (eqs. 18-20) or no preconditioner, and
-   * a backtracking line search on ||R||. Stops when
+   * Inexact Newton with a matrix-free Krylov solver (doc/theory.md sections
+   * 10-11; Knoll & Keyes 2004; equation numbers of Cummins & Brackbill
+   * 2001): J dx = -R solved by deal.II's SolverGMRES with right
+   * preconditioning (eq. 17) or SolverFGMRES to the relative tolerance
+   * eta_k (constant or Eisenstat-Walker choice 2), J z by the finite
+   * difference (R(x + eps z) - R(x)) / eps (eq. 15), weighted Jacobi with
+   * the probed diagonal (eqs. 18-20) or no preconditioner, and a
+   * backtracking line search on ||R||. Stops when
    * ||R|| <= Tolerance F_scale or RMS(R) <= Absolute tolerance U, U being
    * the velocity scale.
    */
