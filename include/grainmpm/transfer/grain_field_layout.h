@@ -20,7 +20,7 @@ namespace grainmpm
   using namespace dealii;
 
   /**
-   * The compact multi-valued grid field of DESIGN.md section 4. A slot is
+   * The compact multi-valued grid field (doc/theory.md). A slot is
    * one (node, field) pair that particles of that field touch; each field
    * (grain) has a velocity only on its slots, so memory is proportional to
    * particles and occupied nodes, never to grains x nodes. Slots are
@@ -30,7 +30,7 @@ namespace grainmpm
    *
    * A contact node is a node with two or more slots.
    *
-   * In parallel (DESIGN.md section 8), a slot belongs to the rank that owns
+   * In parallel, a slot belongs to the rank that owns
    * its node. A rank whose particles touch a node owned by another rank
    * (a ghost node) holds ghost slots there: reinit() sends the fields it
    * has at its ghost nodes to their owners, which add them to their slots,

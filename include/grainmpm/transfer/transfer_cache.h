@@ -43,7 +43,7 @@ namespace grainmpm
    * Everything the particle-grid transfers of one step need that depends
    * only on the particle positions at the start of the step, in flat
    * arrays in the order in which `for (auto &particle : particle_handler)`
-   * visits the particles (DESIGN.md section 2): for each particle its
+   * visits the particles (see doc/theory.md): for each particle its
    * 2^dim nodes, the Q1 shape values S_ip and gradients grad S_ip
    * evaluated directly from the reference location (the cells are
    * axis-aligned boxes), and its velocity field (the grain, or the common
