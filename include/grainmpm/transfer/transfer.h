@@ -120,9 +120,9 @@ namespace grainmpm
     }
 
     /**
-     * Particle to grid: momenta sum_p m_p v_p S_ip and, if given, masses
-     * sum_p m_p S_ip and mass gradients sum_p m_p grad S_ip per slot,
-     * completed on the owners.
+     * Particle to grid: momenta sum_p m_p v_p S_ip and, if given (both or
+     * neither), masses sum_p m_p S_ip and mass gradients
+     * sum_p m_p grad S_ip per slot, completed on the owners.
      */
     void
     particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
