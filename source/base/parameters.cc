@@ -3,6 +3,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/grain_geometry.h>
 #include <grainmpm/particles/random_packing.h>
 
 #include <deal.II/base/patterns.h>
@@ -616,105 +617,6 @@ namespace grainmpm
 
 
 
-  template <int dim>
-  bool
-  GrainParameters<dim>::contains(const Point<dim> &point) const
-  {
-    switch (shape)
-      {
-        case GrainShape::disk:
-        case GrainShape::sphere:
-          return point.distance_square(centre) < radius * radius;
-
-        case GrainShape::rectangle:
-        case GrainShape::box:
-          {
-            // Rotate the point back into the frame of the unrotated box.
-            Tensor<1, dim> local = point - centre;
-            if (rotation != 0.)
-              {
-                const double angle = -rotation * M_PI / 180.;
-                const double x     = local[0];
-                const double y     = local[1];
-                local[0]           = std::cos(angle) * x - std::sin(angle) * y;
-                local[1]           = std::sin(angle) * x + std::cos(angle) * y;
-              }
-            for (unsigned int d = 0; d < dim; ++d)
-              if (!(std::abs(local[d]) < 0.5 * size[d]))
-                return false;
-            return true;
-          }
-
-        case GrainShape::polygon:
-          {
-            // Even-odd (ray casting) rule.
-            bool               inside = false;
-            const unsigned int n      = vertices.size();
-            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
-              {
-                const Point<dim> &a = vertices[i];
-                const Point<dim> &b = vertices[j];
-                if ((a[1] > point[1]) != (b[1] > point[1]))
-                  {
-                    const double x_cross =
-                      (b[0] - a[0]) * (point[1] - a[1]) / (b[1] - a[1]) + a[0];
-                    if (point[0] < x_cross)
-                      inside = !inside;
-                  }
-              }
-            return inside;
-          }
-      }
-    return false;
-  }
-
-
-
-  template <int dim>
-  std::pair<Point<dim>, Point<dim>>
-  GrainParameters<dim>::bounding_box() const
-  {
-    Point<dim> lower, upper;
-    switch (shape)
-      {
-        case GrainShape::disk:
-        case GrainShape::sphere:
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              lower[d] = centre[d] - radius;
-              upper[d] = centre[d] + radius;
-            }
-          break;
-        case GrainShape::rectangle:
-        case GrainShape::box:
-          {
-            const double angle = rotation * M_PI / 180.;
-            const double c     = std::abs(std::cos(angle)),
-                         s     = std::abs(std::sin(angle));
-            Tensor<1, dim> half;
-            half[0] = 0.5 * (c * size[0] + s * size[1]);
-            half[1] = 0.5 * (s * size[0] + c * size[1]);
-            if (dim == 3)
-              half[dim - 1] = 0.5 * size[dim - 1];
-            lower = centre - half;
-            upper = centre + half;
-            break;
-          }
-        case GrainShape::polygon:
-          lower = upper = vertices[0];
-          for (const auto &vertex : vertices)
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                lower[d] = std::min(lower[d], vertex[d]);
-                upper[d] = std::max(upper[d], vertex[d]);
-              }
-          break;
-      }
-    return {lower, upper};
-  }
-
-
-
   // ------------------------------------------------------------- contact
 
   void
@@ -1283,7 +1185,7 @@ namespace grainmpm
           }
 
         // The grain must lie inside the background grid.
-        const auto box = grain.bounding_box();
+        const auto box = bounding_box(grain);
         for (unsigned int d = 0; d < dim; ++d)
           if (box.first[d] < grid.lower_corner[d] ||
               box.second[d] > grid.upper_corner[d])

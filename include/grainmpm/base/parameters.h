@@ -143,15 +143,13 @@ namespace grainmpm
     GrainParameters();
     void
     declare(ParameterHandler &prm);
-    /** Convert the texts to enums and vertex lists; check the geometry. */
+    /**
+     * Convert the texts to enums and vertex lists; check the geometry. The
+     * geometric queries on the result, contains() and bounding_box(), are
+     * in grainmpm/particles/grain_geometry.h.
+     */
     void
     check(const std::string &prefix);
-    /** True if @p point lies strictly inside the grain's shape. */
-    bool
-    contains(const Point<dim> &point) const;
-    /** The corners of an axis-aligned box that contains the shape. */
-    std::pair<Point<dim>, Point<dim>>
-    bounding_box() const;
   };
 
   /**
