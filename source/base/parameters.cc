@@ -2,8 +2,10 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_parsing.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/particles/grain_geometry.h>
+#include <grainmpm/particles/grain_list.h>
 #include <grainmpm/particles/random_packing.h>
 
 #include <deal.II/base/patterns.h>
@@ -20,34 +22,6 @@ namespace grainmpm
   {
     const std::array<std::string, 6> face_names = {
       {"x-", "x+", "y-", "y+", "z-", "z+"}};
-
-    std::string
-    strip_comment(const std::string &line)
-    {
-      return Utilities::trim(line.substr(0, line.find('#')));
-    }
-
-    std::vector<double>
-    parse_numbers(const std::string &text,
-                  const std::string &entry,
-                  const std::string &separator = ",")
-    {
-      std::vector<double> numbers;
-      for (const auto &item : Utilities::split_string_list(text, separator))
-        {
-          try
-            {
-              numbers.push_back(Utilities::string_to_double(item));
-            }
-          catch (...)
-            {
-              throw InputError(entry,
-                               "'" + item + "' in '" + text +
-                                 "' is not a number.");
-            }
-        }
-      return numbers;
-    }
 
     template <int dim>
     std::string
@@ -1104,46 +1078,8 @@ namespace grainmpm
     // Grains from the list file come after the individually described ones.
     if (!grain_list_file.empty())
       {
-        std::ifstream in(grain_list_file);
-        if (!in)
-          throw InputError("Grains/Grain list file = " + grain_list_file,
-                           "cannot open this file.");
-        std::string  line;
-        unsigned int line_number = 0;
-        while (std::getline(in, line))
-          {
-            ++line_number;
-            line = strip_comment(line);
-            if (line.empty())
-              continue;
-            const std::string source = "Grains/Grain list file " +
-                                       grain_list_file + ", line " +
-                                       std::to_string(line_number);
-            const auto         fields = Utilities::split_string_list(line, ',');
-            const unsigned int n_fields = 1 + dim + 1 + dim + 1 + 1 + dim;
-            if (fields.size() != n_fields)
-              throw InputError(source,
-                               "expected " + std::to_string(n_fields) +
-                                 " comma-separated columns (shape, centre, "
-                                 "radius, size, rotation, material, "
-                                 "velocity), found " +
-                                 std::to_string(fields.size()) + ".");
-            GrainParameters<dim> grain;
-            grain.source        = source;
-            grain.shape_text    = fields[0];
-            unsigned int column = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              grain.centre[d] = parse_numbers(fields[column++], source)[0];
-            grain.radius = parse_numbers(fields[column++], source)[0];
-            for (unsigned int d = 0; d < dim; ++d)
-              grain.size[d] = parse_numbers(fields[column++], source)[0];
-            grain.rotation = parse_numbers(fields[column++], source)[0];
-            grain.material = fields[column++];
-            grain.initial_velocity.clear();
-            for (unsigned int d = 0; d < dim; ++d)
-              grain.initial_velocity += (d > 0 ? ";" : "") + fields[column++];
-            grains.push_back(grain);
-          }
+        const auto listed = read_grain_list<dim>(grain_list_file);
+        grains.insert(grains.end(), listed.begin(), listed.end());
       }
 
     // Then the grains of the random packing.

@@ -5,7 +5,6 @@
 #include <grainmpm/particles/random_packing.h>
 
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <random>
 
@@ -151,39 +150,8 @@ namespace grainmpm
 
 
 
-  template <int dim>
-  void
-  write_grain_list(std::ostream                            &out,
-                   const std::vector<GrainParameters<dim>> &grains)
-  {
-    out << "# shape, centre (" << dim << "), radius, size (" << dim
-        << "), rotation [degrees], material, velocity (" << dim << ")\n"
-        << std::setprecision(12);
-    for (const auto &grain : grains)
-      {
-        out << grain.shape_text;
-        for (unsigned int d = 0; d < dim; ++d)
-          out << ", " << grain.centre[d];
-        out << ", " << grain.radius;
-        for (unsigned int d = 0; d < dim; ++d)
-          out << ", " << grain.size[d];
-        out << ", " << grain.rotation << ", " << grain.material;
-        const auto velocity =
-          Utilities::split_string_list(grain.initial_velocity, ';');
-        for (unsigned int d = 0; d < dim; ++d)
-          out << ", " << (d < velocity.size() ? velocity[d] : "0");
-        out << '\n';
-      }
-  }
-
-
-
   template std::vector<GrainParameters<2>>
   random_packing<2>(const RandomPackingParameters<2> &);
   template std::vector<GrainParameters<3>>
   random_packing<3>(const RandomPackingParameters<3> &);
-  template void
-  write_grain_list<2>(std::ostream &, const std::vector<GrainParameters<2>> &);
-  template void
-  write_grain_list<3>(std::ostream &, const std::vector<GrainParameters<3>> &);
 } // namespace grainmpm

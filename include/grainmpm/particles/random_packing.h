@@ -6,7 +6,6 @@
 
 #include <grainmpm/base/parameters.h>
 
-#include <ostream>
 #include <vector>
 
 namespace grainmpm
@@ -33,15 +32,6 @@ namespace grainmpm
   template <int dim>
   std::vector<GrainParameters<dim>>
   random_packing(const RandomPackingParameters<dim> &parameters);
-
-  /**
-   * Write @p grains as a grain list CSV (the format of 'Grains/Grain list
-   * file'), with a header comment.
-   */
-  template <int dim>
-  void
-  write_grain_list(std::ostream                            &out,
-                   const std::vector<GrainParameters<dim>> &grains);
 } // namespace grainmpm
 
 #endif
