@@ -544,6 +544,7 @@ namespace grainmpm
     ParameterHandler prm;
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
+    add_random_packing(parameters);
     Simulator<dim> simulator(parameters, prm, filename, communicator);
     simulator.run();
   }

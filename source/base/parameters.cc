@@ -6,7 +6,6 @@
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/particles/grain_geometry.h>
 #include <grainmpm/particles/grain_list.h>
-#include <grainmpm/particles/random_packing.h>
 
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
@@ -1075,65 +1074,75 @@ namespace grainmpm
     for (const auto &material : materials)
       material.check();
 
-    // Grains from the list file come after the individually described ones.
+    // Grains from the list file come after the individually described ones
+    // and before those of the random packing. They replace the ones of an
+    // earlier call, so that check() can be repeated.
+    const auto first_listed = grains.end() - n_packed_grains - n_listed_grains;
+    grains.erase(first_listed, first_listed + n_listed_grains);
+    n_listed_grains = 0;
     if (!grain_list_file.empty())
       {
         const auto listed = read_grain_list<dim>(grain_list_file);
-        grains.insert(grains.end(), listed.begin(), listed.end());
+        grains.insert(grains.end() - n_packed_grains,
+                      listed.begin(),
+                      listed.end());
+        n_listed_grains = listed.size();
       }
 
-    // Then the grains of the random packing.
+    // The grains of the random packing are made by add_random_packing().
     if (random_packing.n_grains > 0)
-      {
-        random_packing.check(grid);
-        const auto packed = grainmpm::random_packing(random_packing);
-        grains.insert(grains.end(), packed.begin(), packed.end());
-        n_packed_grains = packed.size();
-      }
+      random_packing.check(grid);
 
-    if (grains.empty())
+    if (grains.empty() && random_packing.n_grains == 0)
       throw InputError("Grains",
                        "no grain is described: add a subsection 'Grain 1', "
                        "a Grain list file or a Random packing.");
 
     for (auto &grain : grains)
+      check_grain(grain);
+  }
+
+
+
+  template <int dim>
+  void
+  Parameters<dim>::check_grain(GrainParameters<dim> &grain) const
+  {
+    grain.check(grain.source + "/");
+
+    // The material must exist.
+    bool found = false;
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      if (materials[m].name == grain.material)
+        {
+          grain.material_index = m;
+          found                = true;
+        }
+    if (!found)
       {
-        grain.check(grain.source + "/");
-
-        // The material must exist.
-        bool found = false;
-        for (unsigned int m = 0; m < materials.size(); ++m)
-          if (materials[m].name == grain.material)
-            {
-              grain.material_index = m;
-              found                = true;
-            }
-        if (!found)
-          {
-            std::string known;
-            for (const auto &material : materials)
-              known += (known.empty() ? "" : ", ") + material.name;
-            throw InputError(grain.source + "/Material = " + grain.material,
-                             "there is no material of this name in "
-                             "subsection Materials (defined: " +
-                               (known.empty() ? std::string("none") : known) +
-                               ").");
-          }
-
-        // The grain must lie inside the background grid.
-        const auto box = bounding_box(grain);
-        for (unsigned int d = 0; d < dim; ++d)
-          if (box.first[d] < grid.lower_corner[d] ||
-              box.second[d] > grid.upper_corner[d])
-            throw InputError(
-              grain.source,
-              "the grain (bounding box " + point_to_string(box.first) + " to " +
-                point_to_string(box.second) +
-                ") does not lie inside the background grid " +
-                point_to_string(grid.lower_corner) + " to " +
-                point_to_string(grid.upper_corner) +
-                ": move it (Centre) or enlarge the grid (Background grid).");
+        std::string known;
+        for (const auto &material : materials)
+          known += (known.empty() ? "" : ", ") + material.name;
+        throw InputError(grain.source + "/Material = " + grain.material,
+                         "there is no material of this name in "
+                         "subsection Materials (defined: " +
+                           (known.empty() ? std::string("none") : known) +
+                           ").");
       }
+
+    // The grain must lie inside the background grid.
+    const auto box = bounding_box(grain);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (box.first[d] < grid.lower_corner[d] ||
+          box.second[d] > grid.upper_corner[d])
+        throw InputError(
+          grain.source,
+          "the grain (bounding box " + point_to_string(box.first) + " to " +
+            point_to_string(box.second) +
+            ") does not lie inside the background grid " +
+            point_to_string(grid.lower_corner) + " to " +
+            point_to_string(grid.upper_corner) +
+            ": move it (Centre) or enlarge the grid (Background grid).");
   }
 
 

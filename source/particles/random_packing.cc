@@ -150,8 +150,31 @@ namespace grainmpm
 
 
 
+  template <int dim>
+  void
+  add_random_packing(Parameters<dim> &parameters)
+  {
+    auto &grains = parameters.grains;
+    grains.erase(grains.end() - parameters.n_packed_grains, grains.end());
+    parameters.n_packed_grains = 0;
+    if (parameters.random_packing.n_grains == 0)
+      return;
+
+    auto packed = random_packing(parameters.random_packing);
+    for (auto &grain : packed)
+      parameters.check_grain(grain);
+    grains.insert(grains.end(), packed.begin(), packed.end());
+    parameters.n_packed_grains = packed.size();
+  }
+
+
+
   template std::vector<GrainParameters<2>>
   random_packing<2>(const RandomPackingParameters<2> &);
   template std::vector<GrainParameters<3>>
   random_packing<3>(const RandomPackingParameters<3> &);
+  template void
+  add_random_packing<2>(Parameters<2> &);
+  template void
+  add_random_packing<3>(Parameters<3> &);
 } // namespace grainmpm

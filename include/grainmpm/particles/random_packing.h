@@ -32,6 +32,18 @@ namespace grainmpm
   template <int dim>
   std::vector<GrainParameters<dim>>
   random_packing(const RandomPackingParameters<dim> &parameters);
+
+  /**
+   * Put the grains of subsection Random packing (random_packing()) at the
+   * end of @p parameters.grains, in place of those of an earlier call,
+   * checked like the described grains (Parameters::check_grain()), and set
+   * @p parameters.n_packed_grains. Call after Parameters::parse() (or
+   * check()), before the grains are used; calling it again gives the same
+   * grains. Does nothing if Number of grains is 0.
+   */
+  template <int dim>
+  void
+  add_random_packing(Parameters<dim> &parameters);
 } // namespace grainmpm
 
 #endif
