@@ -10,7 +10,7 @@ namespace grainmpm
 {
   template <int dim>
   bool
-  contains(const GrainParameters<dim> &grain, const Point<dim> &point)
+  contains(const GrainParameters<dim> &grain, const dealii::Point<dim> &point)
   {
     switch (grain.shape)
       {
@@ -23,7 +23,7 @@ namespace grainmpm
         case GrainShape::box:
           {
             // Rotate the point back into the frame of the unrotated box.
-            Tensor<1, dim> local = point - grain.centre;
+            dealii::Tensor<1, dim> local = point - grain.centre;
             if (grain.rotation != 0.)
               {
                 const double angle = -grain.rotation * M_PI / 180.;
@@ -41,13 +41,13 @@ namespace grainmpm
         case GrainShape::polygon:
           {
             // Even-odd (ray casting) rule.
-            const std::vector<Point<dim>> &vertices = grain.vertices;
-            bool                           inside   = false;
-            const unsigned int             n        = vertices.size();
+            const std::vector<dealii::Point<dim>> &vertices = grain.vertices;
+            bool                                   inside   = false;
+            const unsigned int                     n        = vertices.size();
             for (unsigned int i = 0, j = n - 1; i < n; j = i++)
               {
-                const Point<dim> &a = vertices[i];
-                const Point<dim> &b = vertices[j];
+                const dealii::Point<dim> &a = vertices[i];
+                const dealii::Point<dim> &b = vertices[j];
                 if ((a[1] > point[1]) != (b[1] > point[1]))
                   {
                     const double x_cross =
@@ -65,11 +65,11 @@ namespace grainmpm
 
 
   template <int dim>
-  std::pair<Point<dim>, Point<dim>>
+  std::pair<dealii::Point<dim>, dealii::Point<dim>>
   bounding_box(const GrainParameters<dim> &grain)
   {
-    const Point<dim> &centre = grain.centre;
-    Point<dim>        lower, upper;
+    const dealii::Point<dim> &centre = grain.centre;
+    dealii::Point<dim>        lower, upper;
     switch (grain.shape)
       {
         case GrainShape::disk:
@@ -83,11 +83,11 @@ namespace grainmpm
         case GrainShape::rectangle:
         case GrainShape::box:
           {
-            const Tensor<1, dim> &size  = grain.size;
-            const double          angle = grain.rotation * M_PI / 180.;
-            const double          c     = std::abs(std::cos(angle)),
-                         s              = std::abs(std::sin(angle));
-            Tensor<1, dim> half;
+            const dealii::Tensor<1, dim> &size  = grain.size;
+            const double                  angle = grain.rotation * M_PI / 180.;
+            const double                  c     = std::abs(std::cos(angle)),
+                         s                      = std::abs(std::sin(angle));
+            dealii::Tensor<1, dim> half;
             half[0] = 0.5 * (c * size[0] + s * size[1]);
             half[1] = 0.5 * (s * size[0] + c * size[1]);
             if (dim == 3)
@@ -112,11 +112,11 @@ namespace grainmpm
 
 
   template bool
-  contains<2>(const GrainParameters<2> &, const Point<2> &);
+  contains<2>(const GrainParameters<2> &, const dealii::Point<2> &);
   template bool
-  contains<3>(const GrainParameters<3> &, const Point<3> &);
-  template std::pair<Point<2>, Point<2>>
+  contains<3>(const GrainParameters<3> &, const dealii::Point<3> &);
+  template std::pair<dealii::Point<2>, dealii::Point<2>>
   bounding_box<2>(const GrainParameters<2> &);
-  template std::pair<Point<3>, Point<3>>
+  template std::pair<dealii::Point<3>, dealii::Point<3>>
   bounding_box<3>(const GrainParameters<3> &);
 } // namespace grainmpm

@@ -31,7 +31,7 @@ namespace grainmpm
           continue;
         const std::string source = "Grains/Grain list file " + filename +
                                    ", line " + std::to_string(line_number);
-        const auto         fields   = Utilities::split_string_list(line, ',');
+        const auto fields = dealii::Utilities::split_string_list(line, ',');
         const unsigned int n_fields = 1 + dim + 1 + dim + 1 + 1 + dim;
         if (fields.size() != n_fields)
           throw InputError(source,
@@ -79,7 +79,7 @@ namespace grainmpm
           out << ", " << grain.size[d];
         out << ", " << grain.rotation << ", " << grain.material;
         const auto velocity =
-          Utilities::split_string_list(grain.initial_velocity, ';');
+          dealii::Utilities::split_string_list(grain.initial_velocity, ';');
         for (unsigned int d = 0; d < dim; ++d)
           out << ", " << (d < velocity.size() ? velocity[d] : "0");
         out << '\n';

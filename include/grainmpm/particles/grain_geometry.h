@@ -4,7 +4,7 @@
 #ifndef grainmpm_particles_grain_geometry_h
 #define grainmpm_particles_grain_geometry_h
 
-#include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/grain_parameters.h>
 
 #include <deal.II/base/point.h>
 
@@ -12,8 +12,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * True if @p point lies strictly inside the shape of @p grain (a checked
    * grain: GrainParameters::check() has set its shape and vertices).
@@ -22,14 +20,14 @@ namespace grainmpm
    */
   template <int dim>
   bool
-  contains(const GrainParameters<dim> &grain, const Point<dim> &point);
+  contains(const GrainParameters<dim> &grain, const dealii::Point<dim> &point);
 
   /**
    * The lower and upper corners of an axis-aligned box that contains the
    * shape of @p grain (a checked grain).
    */
   template <int dim>
-  std::pair<Point<dim>, Point<dim>>
+  std::pair<dealii::Point<dim>, dealii::Point<dim>>
   bounding_box(const GrainParameters<dim> &grain);
 } // namespace grainmpm
 

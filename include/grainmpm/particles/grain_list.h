@@ -4,7 +4,7 @@
 #ifndef grainmpm_particles_grain_list_h
 #define grainmpm_particles_grain_list_h
 
-#include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/grain_parameters.h>
 
 #include <ostream>
 #include <string>
