@@ -7,6 +7,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/random_packing.h>
 #include <grainmpm/simulator.h>
 
 #include <deal.II/base/mpi.h>
@@ -52,6 +53,7 @@ namespace
     ParameterHandler prm;
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
+    add_random_packing(parameters);
     std::cout << filename << ": " << dim << "D, " << parameters.materials.size()
               << " materials, " << parameters.grains.size()
               << " grains: parameters OK" << std::endl;

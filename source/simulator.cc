@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/grain_list.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
 #include <grainmpm/simulator.h>
@@ -477,6 +478,7 @@ namespace grainmpm
     ParameterHandler prm;
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
+    add_random_packing(parameters);
     Simulator<dim> simulator(parameters, prm, filename, communicator);
     simulator.run();
   }

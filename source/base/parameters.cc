@@ -2,15 +2,16 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_parsing.h>
 #include <grainmpm/base/parameters.h>
-#include <grainmpm/particles/random_packing.h>
+#include <grainmpm/particles/grain_geometry.h>
+#include <grainmpm/particles/grain_list.h>
 
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
 #include <fstream>
-#include <limits>
 #include <sstream>
 
 namespace grainmpm
@@ -19,34 +20,6 @@ namespace grainmpm
   {
     const std::array<std::string, 6> face_names = {
       {"x-", "x+", "y-", "y+", "z-", "z+"}};
-
-    std::string
-    strip_comment(const std::string &line)
-    {
-      return Utilities::trim(line.substr(0, line.find('#')));
-    }
-
-    std::vector<double>
-    parse_numbers(const std::string &text,
-                  const std::string &entry,
-                  const std::string &separator = ",")
-    {
-      std::vector<double> numbers;
-      for (const auto &item : Utilities::split_string_list(text, separator))
-        {
-          try
-            {
-              numbers.push_back(Utilities::string_to_double(item));
-            }
-          catch (...)
-            {
-              throw InputError(entry,
-                               "'" + item + "' in '" + text +
-                                 "' is not a number.");
-            }
-        }
-      return numbers;
-    }
 
     template <int dim>
     std::string
@@ -369,352 +342,6 @@ namespace grainmpm
 
 
 
-  // ------------------------------------------------------ random packing
-
-  template <int dim>
-  void
-  RandomPackingParameters<dim>::declare(ParameterHandler &prm)
-  {
-    prm.enter_subsection("Random packing");
-    prm.add_parameter(
-      "Number of grains",
-      n_grains,
-      "Number of disks (2D) or spheres (3D) to generate by ballistic "
-      "deposition into the box between Lower corner and Upper corner "
-      "(dropped along -y at random lateral positions, each placed where it "
-      "comes to rest lowest among Drop attempts tries, touching the floor "
-      "or a grain), in addition to the described "
-      "grains. 0: none. The run writes them to packing.csv in the output "
-      "directory, a grain list file for 'Grains/Grain list file'. "
-      "Dimensionless.",
-      Patterns::Integer(0));
-    prm.add_parameter("Minimum radius",
-                      minimum_radius,
-                      "Smallest grain radius; radii are uniform between "
-                      "the minimum and the maximum. Units: length.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Maximum radius",
-                      maximum_radius,
-                      "Largest grain radius. Units: length.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Gap",
-                      gap,
-                      "Clearance between deposited grains as a fraction of "
-                      "the sum of their radii, so that no two grains share "
-                      "a material point at the start. Dimensionless.",
-                      Patterns::Double(0., 1.));
-    prm.add_parameter("Lower corner",
-                      lower_corner,
-                      "Corner of the deposition box with the smallest "
-                      "coordinates; its y coordinate is the floor. Units: "
-                      "length.");
-    prm.add_parameter("Upper corner",
-                      upper_corner,
-                      "Corner of the deposition box with the largest "
-                      "coordinates. Units: length.");
-    prm.add_parameter("Material",
-                      material,
-                      "Name of the material (a subsection of Materials) of "
-                      "the generated grains.");
-    prm.add_parameter("Drop attempts",
-                      n_candidates,
-                      "Each grain is dropped at this many random lateral "
-                      "positions and placed where it comes to rest lowest; "
-                      "more attempts fill holes and give denser packings "
-                      "(1: plain ballistic deposition). Dimensionless.",
-                      Patterns::Integer(1));
-    prm.add_parameter("Seed",
-                      seed,
-                      "Seed of the random numbers (std::mt19937): the same "
-                      "seed gives the same packing. Dimensionless.",
-                      Patterns::Integer(0));
-    prm.leave_subsection();
-  }
-
-
-
-  template <int dim>
-  void
-  RandomPackingParameters<dim>::check(
-    const BackgroundGridParameters<dim> &grid) const
-  {
-    if (!(maximum_radius >= minimum_radius) || !(minimum_radius > 0.))
-      throw InputError("Random packing/Maximum radius",
-                       "the radii must satisfy 0 < Minimum radius <= "
-                       "Maximum radius.");
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        if (!(upper_corner[d] - lower_corner[d] > 2. * maximum_radius))
-          throw InputError("Random packing/Upper corner",
-                           "the box must be wider than the largest grain "
-                           "in every direction.");
-        if (lower_corner[d] < grid.lower_corner[d] ||
-            upper_corner[d] > grid.upper_corner[d])
-          throw InputError("Random packing/Lower corner",
-                           "the deposition box must lie inside the "
-                           "background grid.");
-      }
-    if (material.empty())
-      throw InputError("Random packing/Material",
-                       "name the material of the generated grains.");
-  }
-
-
-
-  template struct RandomPackingParameters<2>;
-  template struct RandomPackingParameters<3>;
-
-
-
-  // -------------------------------------------------------------- grains
-
-  template <int dim>
-  GrainParameters<dim>::GrainParameters()
-  {
-    shape_text = (dim == 2 ? "disk" : "sphere");
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        centre[d] = 0.5;
-        size[d]   = 0.2;
-        initial_velocity += std::string(d > 0 ? "; " : "") + "0";
-      }
-    prescribed_velocity = initial_velocity;
-  }
-
-
-
-  template <int dim>
-  void
-  GrainParameters<dim>::declare(ParameterHandler &prm)
-  {
-    prm.add_parameter("Shape",
-                      shape_text,
-                      "The shape of the grain: 'disk', 'rectangle' or "
-                      "'polygon' in 2D, 'sphere' or 'box' in 3D. "
-                      "Dimensionless.",
-                      Patterns::Anything());
-    prm.add_parameter("Centre",
-                      centre,
-                      "Centre of the disk, sphere, rectangle or box. "
-                      "Units: length.");
-    prm.add_parameter("Radius",
-                      radius,
-                      "Radius of a disk or sphere. Units: length.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Size",
-                      size,
-                      "Edge lengths of a rectangle or box, one per "
-                      "direction (before rotation). Units: length.");
-    prm.add_parameter("Rotation",
-                      rotation,
-                      "Counter-clockwise rotation of a rectangle or box about "
-                      "its centre (about the z axis in 3D). Units: degrees.");
-    prm.add_parameter("Vertices",
-                      vertices_text,
-                      "Vertices of a polygon in counter-clockwise or "
-                      "clockwise order, as 'x1, y1; x2, y2; ...'. "
-                      "Units: length.");
-    prm.add_parameter("Material",
-                      material,
-                      "Name of the material (a subsection of 'Materials') "
-                      "the grain is made of. Dimensionless.");
-    prm.add_parameter("Initial velocity",
-                      initial_velocity,
-                      "Initial velocity of the grain's material points, one "
-                      "expression of the coordinates x, y (, z) per "
-                      "component, separated by ';' (deal.II FunctionParser "
-                      "syntax, e.g. '0.1; -0.2*x'). Units: length/time.");
-    prm.add_parameter("Rigid",
-                      rigid,
-                      "If true, the grain is a rigid body that moves with the "
-                      "prescribed velocity and acts on other grains through "
-                      "contact as a body of infinite mass (platens, pistons, "
-                      "impactors).");
-    prm.add_parameter(
-      "Prescribed velocity",
-      prescribed_velocity,
-      "Velocity of a rigid grain, one expression of x, y (, z) and the "
-      "time t per component separated by ';'. Ignored unless Rigid is "
-      "true. Units: length/time.");
-  }
-
-
-
-  template <int dim>
-  void
-  GrainParameters<dim>::check(const std::string &prefix)
-  {
-    const std::string entry = prefix + "Shape = " + shape_text;
-    if (shape_text == "disk")
-      shape = GrainShape::disk;
-    else if (shape_text == "rectangle")
-      shape = GrainShape::rectangle;
-    else if (shape_text == "polygon")
-      shape = GrainShape::polygon;
-    else if (shape_text == "sphere")
-      shape = GrainShape::sphere;
-    else if (shape_text == "box")
-      shape = GrainShape::box;
-    else
-      throw InputError(entry,
-                       "unknown shape (use " +
-                         std::string(dim == 2 ? "disk, rectangle or polygon" :
-                                                "sphere or box") +
-                         ").");
-
-    const bool is_2d_shape =
-      (shape == GrainShape::disk || shape == GrainShape::rectangle ||
-       shape == GrainShape::polygon);
-    if (is_2d_shape != (dim == 2))
-      throw InputError(entry,
-                       "this shape does not exist in " + std::to_string(dim) +
-                         "D (use " +
-                         std::string(dim == 2 ? "disk, rectangle or polygon" :
-                                                "sphere or box") +
-                         ").");
-
-    if ((shape == GrainShape::disk || shape == GrainShape::sphere) &&
-        !(radius > 0.))
-      throw InputError(prefix + "Radius", "must be positive.");
-    if (shape == GrainShape::rectangle || shape == GrainShape::box)
-      for (unsigned int d = 0; d < dim; ++d)
-        if (!(size[d] > 0.))
-          throw InputError(prefix + "Size",
-                           "every edge length must be positive.");
-
-    vertices.clear();
-    if (shape == GrainShape::polygon)
-      {
-        for (const auto &vertex :
-             Utilities::split_string_list(vertices_text, ';'))
-          {
-            const auto coordinates = parse_numbers(vertex, prefix + "Vertices");
-            if (coordinates.size() != dim)
-              throw InputError(prefix + "Vertices = " + vertices_text,
-                               "each vertex needs " + std::to_string(dim) +
-                                 " coordinates separated by ','.");
-            Point<dim> point;
-            for (unsigned int d = 0; d < dim; ++d)
-              point[d] = coordinates[d];
-            vertices.push_back(point);
-          }
-        if (vertices.size() < 3)
-          throw InputError(prefix + "Vertices = " + vertices_text,
-                           "a polygon needs at least three vertices.");
-      }
-
-    if (Utilities::split_string_list(initial_velocity, ';').size() != dim)
-      throw InputError(prefix + "Initial velocity = " + initial_velocity,
-                       "needs " + std::to_string(dim) +
-                         " expressions separated by ';'.");
-    if (rigid &&
-        Utilities::split_string_list(prescribed_velocity, ';').size() != dim)
-      throw InputError(prefix + "Prescribed velocity = " + prescribed_velocity,
-                       "needs " + std::to_string(dim) +
-                         " expressions separated by ';'.");
-  }
-
-
-
-  template <int dim>
-  bool
-  GrainParameters<dim>::contains(const Point<dim> &point) const
-  {
-    switch (shape)
-      {
-        case GrainShape::disk:
-        case GrainShape::sphere:
-          return point.distance_square(centre) < radius * radius;
-
-        case GrainShape::rectangle:
-        case GrainShape::box:
-          {
-            // Rotate the point back into the frame of the unrotated box.
-            Tensor<1, dim> local = point - centre;
-            if (rotation != 0.)
-              {
-                const double angle = -rotation * M_PI / 180.;
-                const double x     = local[0];
-                const double y     = local[1];
-                local[0]           = std::cos(angle) * x - std::sin(angle) * y;
-                local[1]           = std::sin(angle) * x + std::cos(angle) * y;
-              }
-            for (unsigned int d = 0; d < dim; ++d)
-              if (!(std::abs(local[d]) < 0.5 * size[d]))
-                return false;
-            return true;
-          }
-
-        case GrainShape::polygon:
-          {
-            // Even-odd (ray casting) rule.
-            bool               inside = false;
-            const unsigned int n      = vertices.size();
-            for (unsigned int i = 0, j = n - 1; i < n; j = i++)
-              {
-                const Point<dim> &a = vertices[i];
-                const Point<dim> &b = vertices[j];
-                if ((a[1] > point[1]) != (b[1] > point[1]))
-                  {
-                    const double x_cross =
-                      (b[0] - a[0]) * (point[1] - a[1]) / (b[1] - a[1]) + a[0];
-                    if (point[0] < x_cross)
-                      inside = !inside;
-                  }
-              }
-            return inside;
-          }
-      }
-    return false;
-  }
-
-
-
-  template <int dim>
-  std::pair<Point<dim>, Point<dim>>
-  GrainParameters<dim>::bounding_box() const
-  {
-    Point<dim> lower, upper;
-    switch (shape)
-      {
-        case GrainShape::disk:
-        case GrainShape::sphere:
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              lower[d] = centre[d] - radius;
-              upper[d] = centre[d] + radius;
-            }
-          break;
-        case GrainShape::rectangle:
-        case GrainShape::box:
-          {
-            const double angle = rotation * M_PI / 180.;
-            const double c     = std::abs(std::cos(angle)),
-                         s     = std::abs(std::sin(angle));
-            Tensor<1, dim> half;
-            half[0] = 0.5 * (c * size[0] + s * size[1]);
-            half[1] = 0.5 * (s * size[0] + c * size[1]);
-            if (dim == 3)
-              half[dim - 1] = 0.5 * size[dim - 1];
-            lower = centre - half;
-            upper = centre + half;
-            break;
-          }
-        case GrainShape::polygon:
-          lower = upper = vertices[0];
-          for (const auto &vertex : vertices)
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                lower[d] = std::min(lower[d], vertex[d]);
-                upper[d] = std::max(upper[d], vertex[d]);
-              }
-          break;
-      }
-    return {lower, upper};
-  }
-
-
-
   // ------------------------------------------------------------- contact
 
   void
@@ -751,306 +378,6 @@ namespace grainmpm
       model = ContactModel::frictionless;
     else
       model = ContactModel::coulomb_friction;
-  }
-
-
-
-  // ------------------------------------------------------- time stepping
-
-  void
-  TimeSteppingParameters::declare(ParameterHandler &prm)
-  {
-    prm.enter_subsection("Time stepping");
-    prm.add_parameter(
-      "Scheme",
-      scheme_text,
-      "The time integration scheme: 'explicit leapfrog' (eqs. 7-10 of "
-      "Cummins & Brackbill) or 'implicit theta' (eqs. 11-20: theta-centred "
-      "stress and volume, solved by Jacobian-free Newton-Krylov; see the "
-      "subsections Nonlinear solver and Linear solver). Dimensionless.",
-      Patterns::Selection("explicit leapfrog|implicit theta"));
-    prm.add_parameter(
-      "Theta",
-      theta,
-      "Centring of the implicit scheme: stress and volume at t + theta dt. "
-      "1/2 conserves the energy of linear elastic motion, larger values "
-      "damp the highest frequencies, 1 is backward Euler. Dimensionless.",
-      Patterns::Double(0.5, 1.));
-    prm.add_parameter(
-      "Minimum time step",
-      minimum_time_step,
-      "Implicit scheme: a step whose Newton solve fails is retried with "
-      "half the time step, down to this value; below it the run stops. "
-      "Zero means 1/1024 of the first time step. Units: time.",
-      Patterns::Double(0.));
-    prm.add_parameter(
-      "Adaptive time stepping",
-      adaptive_time_stepping,
-      "Implicit scheme: cut the time step when a Newton solve fails and "
-      "double it back (up to the step given by Time step or CFL number) "
-      "after Steps before growth consecutive easy steps. If false, a failed "
-      "solve stops the run.");
-    prm.add_parameter(
-      "Steps before growth",
-      steps_before_growth,
-      "Implicit scheme: consecutive steps that converge in at most half of "
-      "Maximum Newton iterations before a cut time step is doubled. "
-      "Dimensionless.",
-      Patterns::Integer(1));
-    prm.add_parameter(
-      "Stress update",
-      stress_update_text,
-      "Where in the explicit step the stress is updated: 'USF' (update "
-      "stress first, from the grid velocity of the particle-to-grid "
-      "transfer, as in eqs. 8-9) or 'MUSL' (after the particle update, from "
-      "the grid velocity remapped from the new particle momenta). "
-      "Dimensionless.",
-      Patterns::Selection("USF|MUSL"));
-    prm.add_parameter("End time",
-                      end_time,
-                      "The time at which the run stops. Units: time.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Time step",
-                      time_step,
-                      "A fixed time step. If zero, the step is chosen every "
-                      "step from the CFL number. Units: time.",
-                      Patterns::Double(0.));
-    prm.add_parameter(
-      "CFL number",
-      cfl_number,
-      "Used when Time step is zero: dt = CFL h / (c + max |v_p|) with h the "
-      "smallest cell size, c the largest dilatational wave speed of the "
-      "materials in use and v_p the particle velocities. Dimensionless.",
-      Patterns::Double(0., 10.));
-    prm.add_parameter(
-      "Particle velocity update",
-      velocity_update,
-      "How particles get their new velocity from the grid: 'FLIP' (add the "
-      "grid velocity change), 'PIC' (take the grid velocity) or 'blend' "
-      "(FLIP fraction alpha of FLIP, 1 - alpha of PIC). Dimensionless.",
-      Patterns::Selection("FLIP|PIC|blend"));
-    prm.add_parameter("FLIP fraction",
-                      flip_fraction,
-                      "The FLIP weight alpha of the 'blend' update. "
-                      "Dimensionless.",
-                      Patterns::Double(0., 1.));
-    prm.add_parameter("Maximum number of steps",
-                      maximum_number_of_steps,
-                      "The run stops after this many steps even if End time "
-                      "is not reached. Dimensionless.",
-                      Patterns::Integer(1));
-    prm.leave_subsection();
-  }
-
-
-
-  void
-  TimeSteppingParameters::check()
-  {
-    scheme = (scheme_text == "implicit theta") ?
-               TimeSteppingScheme::implicit_theta :
-               TimeSteppingScheme::explicit_leapfrog;
-    if (scheme == TimeSteppingScheme::implicit_theta &&
-        stress_update_text == "MUSL")
-      throw InputError("Time stepping/Stress update = MUSL",
-                       "applies to the explicit scheme only; the implicit "
-                       "scheme uses the theta-centred stress of eqs. 12-13. "
-                       "Remove the entry or set it to USF.");
-    stress_update =
-      (stress_update_text == "MUSL") ? StressUpdate::musl : StressUpdate::usf;
-    if (velocity_update == "FLIP")
-      flip_fraction = 1.;
-    else if (velocity_update == "PIC")
-      flip_fraction = 0.;
-    if (time_step == 0. && cfl_number == 0.)
-      throw InputError("Time stepping/CFL number",
-                       "must be positive when Time step is zero.");
-  }
-
-
-
-  // ----------------------------------------------------- nonlinear solver
-
-  void
-  NonlinearSolverParameters::declare(ParameterHandler &prm)
-  {
-    prm.enter_subsection("Nonlinear solver");
-    prm.add_parameter(
-      "Tolerance",
-      tolerance,
-      "Newton stops when ||R|| / F_scale is below this value, R being the "
-      "residual of eq. 16 divided by the slot mass (velocity units) in the "
-      "Euclidean norm. Dimensionless.",
-      Patterns::Double(1e-14, 1.));
-    prm.add_parameter(
-      "Residual scale",
-      residual_scale_text,
-      "F_scale: 'initial residual' (the norm of R at the initial guess of "
-      "the step) or 'physical' (sqrt(number of unknowns) times Velocity "
-      "scale, so that the tolerance is a root-mean-square velocity error "
-      "relative to Velocity scale). Dimensionless.",
-      Patterns::Selection("initial residual|physical"));
-    prm.add_parameter(
-      "Velocity scale",
-      velocity_scale,
-      "The velocity that makes velocities dimensionless for the 'physical' "
-      "residual scale and the finite-difference step. Zero means the "
-      "largest dilatational wave speed of the materials. Units: "
-      "length/time.",
-      Patterns::Double(0.));
-    prm.add_parameter(
-      "Absolute tolerance",
-      absolute_tolerance,
-      "Newton also stops when the root-mean-square of R is below this "
-      "value times Velocity scale, so that steps that start at equilibrium "
-      "converge. Dimensionless.",
-      Patterns::Double(0., 1.));
-    prm.add_parameter("Maximum Newton iterations",
-                      max_iterations,
-                      "Newton iterations per step; a step that has not "
-                      "converged then is rejected (see Time stepping/"
-                      "Adaptive time stepping). Dimensionless.",
-                      Patterns::Integer(1, 1000));
-    prm.add_parameter(
-      "Forcing term",
-      forcing_text,
-      "Relative tolerance eta_k of the linear solve of Newton step k: "
-      "'constant' (Forcing constant) or 'Eisenstat-Walker' (choice 2: "
-      "gamma (||R_k|| / ||R_k-1||)^alpha with the usual safeguards, "
-      "bounded by Maximum forcing term). Dimensionless.",
-      Patterns::Selection("constant|Eisenstat-Walker"));
-    prm.add_parameter("Forcing constant",
-                      forcing_constant,
-                      "eta of the 'constant' forcing term, and eta_0 of "
-                      "Eisenstat-Walker. Dimensionless.",
-                      Patterns::Double(1e-12, 0.99));
-    prm.add_parameter("Maximum forcing term",
-                      forcing_maximum,
-                      "Upper bound of the Eisenstat-Walker eta_k. "
-                      "Dimensionless.",
-                      Patterns::Double(1e-12, 0.99));
-    prm.add_parameter("Eisenstat-Walker gamma",
-                      forcing_gamma,
-                      "gamma of Eisenstat-Walker choice 2. Dimensionless.",
-                      Patterns::Double(0., 1.));
-    prm.add_parameter("Eisenstat-Walker alpha",
-                      forcing_alpha,
-                      "alpha of Eisenstat-Walker choice 2. Dimensionless.",
-                      Patterns::Double(1., 2.));
-    prm.add_parameter(
-      "Differencing step",
-      differencing_text,
-      "Step eps of the finite-difference Jacobian-vector product J z = "
-      "(R(v + eps z) - R(v)) / eps, with velocities made dimensionless by "
-      "Velocity scale: 'Pernice-Walker' eps = sqrt(e (1 + ||v||)) / ||z|| "
-      "or 'Knoll-Keyes' eps = (e^(1/2) / (N ||z||)) sum_i |v_i| + e^(1/2), "
-      "e being Differencing error. Dimensionless.",
-      Patterns::Selection("Pernice-Walker|Knoll-Keyes"));
-    prm.add_parameter("Differencing error",
-                      differencing_error,
-                      "Relative error e of a residual evaluation used in the "
-                      "differencing step. Zero means the machine epsilon "
-                      "2.2e-16. Dimensionless.",
-                      Patterns::Double(0., 1e-2));
-    prm.add_parameter("Line search",
-                      line_search,
-                      "Backtrack along the Newton direction (halving the "
-                      "step) until ||R|| decreases sufficiently.");
-    prm.add_parameter("Maximum line search cuts",
-                      max_line_search_cuts,
-                      "Halvings of the Newton step before the step is "
-                      "rejected. Dimensionless.",
-                      Patterns::Integer(0, 60));
-    prm.add_parameter(
-      "Maximum contact status changes",
-      max_status_changes,
-      "The contact status (which grains touch, stick or slip) is frozen "
-      "within a Newton iteration and re-evaluated between iterations; after "
-      "this many changes in one step it is kept fixed. Dimensionless.",
-      Patterns::Integer(0, 100));
-    prm.leave_subsection();
-  }
-
-
-
-  void
-  NonlinearSolverParameters::check()
-  {
-    residual_scale   = (residual_scale_text == "physical") ?
-                         ResidualScale::physical :
-                         ResidualScale::initial_residual;
-    eisenstat_walker = (forcing_text == "Eisenstat-Walker");
-    differencing     = (differencing_text == "Knoll-Keyes") ?
-                         DifferencingStep::knoll_keyes :
-                         DifferencingStep::pernice_walker;
-    if (differencing_error == 0.)
-      differencing_error = std::numeric_limits<double>::epsilon();
-    if (forcing_constant > forcing_maximum && eisenstat_walker)
-      throw InputError("Nonlinear solver/Forcing constant",
-                       "must not exceed Maximum forcing term.");
-  }
-
-
-
-  // -------------------------------------------------------- linear solver
-
-  void
-  LinearSolverParameters::declare(ParameterHandler &prm)
-  {
-    prm.enter_subsection("Linear solver");
-    prm.add_parameter(
-      "Solver",
-      solver_text,
-      "Krylov solver of each Newton step J dv = -R: 'GMRES' (deal.II "
-      "SolverGMRES with right preconditioning, eq. 17) or 'FGMRES' "
-      "(SolverFGMRES, needed when the preconditioner varies, i.e. Jacobi "
-      "sweeps > 1). Dimensionless.",
-      Patterns::Selection("GMRES|FGMRES"));
-    prm.add_parameter("Restart length",
-                      restart_length,
-                      "Krylov vectors kept before GMRES restarts (the cost of "
-                      "orthogonalisation grows with it). Dimensionless.",
-                      Patterns::Integer(1, 500));
-    prm.add_parameter("Maximum linear iterations",
-                      max_iterations,
-                      "Krylov iterations per Newton step; the Newton step "
-                      "then goes on with the best direction found. "
-                      "Dimensionless.",
-                      Patterns::Integer(1, 100000));
-    prm.add_parameter(
-      "Preconditioner",
-      preconditioner_text,
-      "'none', or 'probed Jacobi': weighted Jacobi with the diagonal of the "
-      "simplified Jacobian (eqs. 18-20) probed matrix-free with 2 3^dim "
-      "coloured residual evaluations once per step. Dimensionless.",
-      Patterns::Selection("none|probed Jacobi"));
-    prm.add_parameter("Jacobi weight",
-                      jacobi_weight,
-                      "omega of y = omega D^-1 r (irrelevant to GMRES with one "
-                      "sweep). Dimensionless.",
-                      Patterns::Double(0.01, 2.));
-    prm.add_parameter("Jacobi sweeps",
-                      jacobi_sweeps,
-                      "Weighted Jacobi sweeps per preconditioner "
-                      "application; each sweep after the first costs one "
-                      "Jacobian-vector product. Dimensionless.",
-                      Patterns::Integer(1, 20));
-    prm.leave_subsection();
-  }
-
-
-
-  void
-  LinearSolverParameters::check()
-  {
-    flexible      = (solver_text == "FGMRES");
-    probed_jacobi = (preconditioner_text == "probed Jacobi");
-    if (jacobi_sweeps > 1 && !flexible && probed_jacobi)
-      throw InputError("Linear solver/Jacobi sweeps",
-                       "more than one sweep makes the preconditioner change "
-                       "from one application to the next (it contains "
-                       "finite-difference products); set Linear solver/"
-                       "Solver = FGMRES.");
   }
 
 
@@ -1199,103 +526,75 @@ namespace grainmpm
     for (const auto &material : materials)
       material.check();
 
-    // Grains from the list file come after the individually described ones.
+    // Grains from the list file come after the individually described ones
+    // and before those of the random packing. They replace the ones of an
+    // earlier call, so that check() can be repeated.
+    const auto first_listed = grains.end() - n_packed_grains - n_listed_grains;
+    grains.erase(first_listed, first_listed + n_listed_grains);
+    n_listed_grains = 0;
     if (!grain_list_file.empty())
       {
-        std::ifstream in(grain_list_file);
-        if (!in)
-          throw InputError("Grains/Grain list file = " + grain_list_file,
-                           "cannot open this file.");
-        std::string  line;
-        unsigned int line_number = 0;
-        while (std::getline(in, line))
-          {
-            ++line_number;
-            line = strip_comment(line);
-            if (line.empty())
-              continue;
-            const std::string source = "Grains/Grain list file " +
-                                       grain_list_file + ", line " +
-                                       std::to_string(line_number);
-            const auto         fields = Utilities::split_string_list(line, ',');
-            const unsigned int n_fields = 1 + dim + 1 + dim + 1 + 1 + dim;
-            if (fields.size() != n_fields)
-              throw InputError(source,
-                               "expected " + std::to_string(n_fields) +
-                                 " comma-separated columns (shape, centre, "
-                                 "radius, size, rotation, material, "
-                                 "velocity), found " +
-                                 std::to_string(fields.size()) + ".");
-            GrainParameters<dim> grain;
-            grain.source        = source;
-            grain.shape_text    = fields[0];
-            unsigned int column = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              grain.centre[d] = parse_numbers(fields[column++], source)[0];
-            grain.radius = parse_numbers(fields[column++], source)[0];
-            for (unsigned int d = 0; d < dim; ++d)
-              grain.size[d] = parse_numbers(fields[column++], source)[0];
-            grain.rotation = parse_numbers(fields[column++], source)[0];
-            grain.material = fields[column++];
-            grain.initial_velocity.clear();
-            for (unsigned int d = 0; d < dim; ++d)
-              grain.initial_velocity += (d > 0 ? ";" : "") + fields[column++];
-            grains.push_back(grain);
-          }
+        const auto listed = read_grain_list<dim>(grain_list_file);
+        grains.insert(grains.end() - n_packed_grains,
+                      listed.begin(),
+                      listed.end());
+        n_listed_grains = listed.size();
       }
 
-    // Then the grains of the random packing.
+    // The grains of the random packing are made by add_random_packing().
     if (random_packing.n_grains > 0)
-      {
-        random_packing.check(grid);
-        const auto packed = grainmpm::random_packing(random_packing);
-        grains.insert(grains.end(), packed.begin(), packed.end());
-        n_packed_grains = packed.size();
-      }
+      random_packing.check(grid);
 
-    if (grains.empty())
+    if (grains.empty() && random_packing.n_grains == 0)
       throw InputError("Grains",
                        "no grain is described: add a subsection 'Grain 1', "
                        "a Grain list file or a Random packing.");
 
     for (auto &grain : grains)
+      check_grain(grain);
+  }
+
+
+
+  template <int dim>
+  void
+  Parameters<dim>::check_grain(GrainParameters<dim> &grain) const
+  {
+    grain.check(grain.source + "/");
+
+    // The material must exist.
+    bool found = false;
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      if (materials[m].name == grain.material)
+        {
+          grain.material_index = m;
+          found                = true;
+        }
+    if (!found)
       {
-        grain.check(grain.source + "/");
-
-        // The material must exist.
-        bool found = false;
-        for (unsigned int m = 0; m < materials.size(); ++m)
-          if (materials[m].name == grain.material)
-            {
-              grain.material_index = m;
-              found                = true;
-            }
-        if (!found)
-          {
-            std::string known;
-            for (const auto &material : materials)
-              known += (known.empty() ? "" : ", ") + material.name;
-            throw InputError(grain.source + "/Material = " + grain.material,
-                             "there is no material of this name in "
-                             "subsection Materials (defined: " +
-                               (known.empty() ? std::string("none") : known) +
-                               ").");
-          }
-
-        // The grain must lie inside the background grid.
-        const auto box = grain.bounding_box();
-        for (unsigned int d = 0; d < dim; ++d)
-          if (box.first[d] < grid.lower_corner[d] ||
-              box.second[d] > grid.upper_corner[d])
-            throw InputError(
-              grain.source,
-              "the grain (bounding box " + point_to_string(box.first) + " to " +
-                point_to_string(box.second) +
-                ") does not lie inside the background grid " +
-                point_to_string(grid.lower_corner) + " to " +
-                point_to_string(grid.upper_corner) +
-                ": move it (Centre) or enlarge the grid (Background grid).");
+        std::string known;
+        for (const auto &material : materials)
+          known += (known.empty() ? "" : ", ") + material.name;
+        throw InputError(grain.source + "/Material = " + grain.material,
+                         "there is no material of this name in "
+                         "subsection Materials (defined: " +
+                           (known.empty() ? std::string("none") : known) +
+                           ").");
       }
+
+    // The grain must lie inside the background grid.
+    const auto box = bounding_box(grain);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (box.first[d] < grid.lower_corner[d] ||
+          box.second[d] > grid.upper_corner[d])
+        throw InputError(
+          grain.source,
+          "the grain (bounding box " + point_to_string(box.first) + " to " +
+            point_to_string(box.second) +
+            ") does not lie inside the background grid " +
+            point_to_string(grid.lower_corner) + " to " +
+            point_to_string(grid.upper_corner) +
+            ": move it (Centre) or enlarge the grid (Background grid).");
   }
 
 
@@ -1378,8 +677,6 @@ namespace grainmpm
   template struct BackgroundGridParameters<3>;
   template struct PhysicsParameters<2>;
   template struct PhysicsParameters<3>;
-  template struct GrainParameters<2>;
-  template struct GrainParameters<3>;
   template struct Parameters<2>;
   template struct Parameters<3>;
 } // namespace grainmpm

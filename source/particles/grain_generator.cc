@@ -4,6 +4,7 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/mpi_tools.h>
 #include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/particles/grain_geometry.h>
 #include <grainmpm/particles/material_point_layout.h>
 
 #include <deal.II/base/mpi.h>
@@ -124,7 +125,7 @@ namespace grainmpm
                                     numbers::invalid_unsigned_int);
     for (unsigned int g = 0; g < n_grains; ++g)
       {
-        const auto   box      = grains[g].bounding_box();
+        const auto   box      = bounding_box(grains[g]);
         unsigned int first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
         for (unsigned int d = 0; d < dim; ++d)
           {
@@ -159,7 +160,7 @@ namespace grainmpm
                                                   per_direction);
                         rest /= per_direction;
                       }
-                    if (!grains[g].contains(point))
+                    if (!contains(grains[g], point))
                       continue;
                     unsigned int &claimed =
                       owner[std::size_t(cell_index) * per_cell + q];

@@ -5,7 +5,6 @@
 #include <grainmpm/particles/random_packing.h>
 
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <random>
 
@@ -153,27 +152,19 @@ namespace grainmpm
 
   template <int dim>
   void
-  write_grain_list(std::ostream                            &out,
-                   const std::vector<GrainParameters<dim>> &grains)
+  add_random_packing(Parameters<dim> &parameters)
   {
-    out << "# shape, centre (" << dim << "), radius, size (" << dim
-        << "), rotation [degrees], material, velocity (" << dim << ")\n"
-        << std::setprecision(12);
-    for (const auto &grain : grains)
-      {
-        out << grain.shape_text;
-        for (unsigned int d = 0; d < dim; ++d)
-          out << ", " << grain.centre[d];
-        out << ", " << grain.radius;
-        for (unsigned int d = 0; d < dim; ++d)
-          out << ", " << grain.size[d];
-        out << ", " << grain.rotation << ", " << grain.material;
-        const auto velocity =
-          Utilities::split_string_list(grain.initial_velocity, ';');
-        for (unsigned int d = 0; d < dim; ++d)
-          out << ", " << (d < velocity.size() ? velocity[d] : "0");
-        out << '\n';
-      }
+    auto &grains = parameters.grains;
+    grains.erase(grains.end() - parameters.n_packed_grains, grains.end());
+    parameters.n_packed_grains = 0;
+    if (parameters.random_packing.n_grains == 0)
+      return;
+
+    auto packed = random_packing(parameters.random_packing);
+    for (auto &grain : packed)
+      parameters.check_grain(grain);
+    grains.insert(grains.end(), packed.begin(), packed.end());
+    parameters.n_packed_grains = packed.size();
   }
 
 
@@ -183,7 +174,7 @@ namespace grainmpm
   template std::vector<GrainParameters<3>>
   random_packing<3>(const RandomPackingParameters<3> &);
   template void
-  write_grain_list<2>(std::ostream &, const std::vector<GrainParameters<2>> &);
+  add_random_packing<2>(Parameters<2> &);
   template void
-  write_grain_list<3>(std::ostream &, const std::vector<GrainParameters<3>> &);
+  add_random_packing<3>(Parameters<3> &);
 } // namespace grainmpm

@@ -10,6 +10,7 @@
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/particles/grain_geometry.h>
 #include <grainmpm/particles/material_point_layout.h>
 
 #include <deal.II/base/mpi.h>
@@ -148,7 +149,7 @@ test(const unsigned int n_cells)
       const Point<dim>   x          = particle.get_location();
       mass[g] += properties[Layout::mass];
       ++count[g];
-      if (!parameters.grains[g].contains(x))
+      if (!contains(parameters.grains[g], x))
         ++n_outside;
       const auto cell = particle.get_surrounding_cell();
       for (unsigned int d = 0; d < dim; ++d)

@@ -15,6 +15,7 @@
 //   'Random packing/Upper corner'.
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/grain_list.h>
 #include <grainmpm/particles/random_packing.h>
 
 #include <deal.II/base/mpi.h>

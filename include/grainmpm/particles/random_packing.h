@@ -6,7 +6,6 @@
 
 #include <grainmpm/base/parameters.h>
 
-#include <ostream>
 #include <vector>
 
 namespace grainmpm
@@ -35,13 +34,16 @@ namespace grainmpm
   random_packing(const RandomPackingParameters<dim> &parameters);
 
   /**
-   * Write @p grains as a grain list CSV (the format of 'Grains/Grain list
-   * file'), with a header comment.
+   * Put the grains of subsection Random packing (random_packing()) at the
+   * end of @p parameters.grains, in place of those of an earlier call,
+   * checked like the described grains (Parameters::check_grain()), and set
+   * @p parameters.n_packed_grains. Call after Parameters::parse() (or
+   * check()), before the grains are used; calling it again gives the same
+   * grains. Does nothing if Number of grains is 0.
    */
   template <int dim>
   void
-  write_grain_list(std::ostream                            &out,
-                   const std::vector<GrainParameters<dim>> &grains);
+  add_random_packing(Parameters<dim> &parameters);
 } // namespace grainmpm
 
 #endif

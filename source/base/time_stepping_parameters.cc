@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// The subsections of the time integration: Time stepping, and Nonlinear
+// solver and Linear solver of the implicit scheme.
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameters.h>
+
+#include <deal.II/base/patterns.h>
+
+#include <limits>
+
+namespace grainmpm
+{
+  // ------------------------------------------------------- time stepping
+
+  void
+  TimeSteppingParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time stepping");
+    prm.add_parameter(
+      "Scheme",
+      scheme_text,
+      "The time integration scheme: 'explicit leapfrog' (eqs. 7-10 of "
+      "Cummins & Brackbill) or 'implicit theta' (eqs. 11-20: theta-centred "
+      "stress and volume, solved by Jacobian-free Newton-Krylov; see the "
+      "subsections Nonlinear solver and Linear solver). Dimensionless.",
+      Patterns::Selection("explicit leapfrog|implicit theta"));
+    prm.add_parameter(
+      "Theta",
+      theta,
+      "Centring of the implicit scheme: stress and volume at t + theta dt. "
+      "1/2 conserves the energy of linear elastic motion, larger values "
+      "damp the highest frequencies, 1 is backward Euler. Dimensionless.",
+      Patterns::Double(0.5, 1.));
+    prm.add_parameter(
+      "Minimum time step",
+      minimum_time_step,
+      "Implicit scheme: a step whose Newton solve fails is retried with "
+      "half the time step, down to this value; below it the run stops. "
+      "Zero means 1/1024 of the first time step. Units: time.",
+      Patterns::Double(0.));
+    prm.add_parameter(
+      "Adaptive time stepping",
+      adaptive_time_stepping,
+      "Implicit scheme: cut the time step when a Newton solve fails and "
+      "double it back (up to the step given by Time step or CFL number) "
+      "after Steps before growth consecutive easy steps. If false, a failed "
+      "solve stops the run.");
+    prm.add_parameter(
+      "Steps before growth",
+      steps_before_growth,
+      "Implicit scheme: consecutive steps that converge in at most half of "
+      "Maximum Newton iterations before a cut time step is doubled. "
+      "Dimensionless.",
+      Patterns::Integer(1));
+    prm.add_parameter(
+      "Stress update",
+      stress_update_text,
+      "Where in the explicit step the stress is updated: 'USF' (update "
+      "stress first, from the grid velocity of the particle-to-grid "
+      "transfer, as in eqs. 8-9) or 'MUSL' (after the particle update, from "
+      "the grid velocity remapped from the new particle momenta). "
+      "Dimensionless.",
+      Patterns::Selection("USF|MUSL"));
+    prm.add_parameter("End time",
+                      end_time,
+                      "The time at which the run stops. Units: time.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Time step",
+                      time_step,
+                      "A fixed time step. If zero, the step is chosen every "
+                      "step from the CFL number. Units: time.",
+                      Patterns::Double(0.));
+    prm.add_parameter(
+      "CFL number",
+      cfl_number,
+      "Used when Time step is zero: dt = CFL h / (c + max |v_p|) with h the "
+      "smallest cell size, c the largest dilatational wave speed of the "
+      "materials in use and v_p the particle velocities. Dimensionless.",
+      Patterns::Double(0., 10.));
+    prm.add_parameter(
+      "Particle velocity update",
+      velocity_update,
+      "How particles get their new velocity from the grid: 'FLIP' (add the "
+      "grid velocity change), 'PIC' (take the grid velocity) or 'blend' "
+      "(FLIP fraction alpha of FLIP, 1 - alpha of PIC). Dimensionless.",
+      Patterns::Selection("FLIP|PIC|blend"));
+    prm.add_parameter("FLIP fraction",
+                      flip_fraction,
+                      "The FLIP weight alpha of the 'blend' update. "
+                      "Dimensionless.",
+                      Patterns::Double(0., 1.));
+    prm.add_parameter("Maximum number of steps",
+                      maximum_number_of_steps,
+                      "The run stops after this many steps even if End time "
+                      "is not reached. Dimensionless.",
+                      Patterns::Integer(1));
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  TimeSteppingParameters::check()
+  {
+    scheme = (scheme_text == "implicit theta") ?
+               TimeSteppingScheme::implicit_theta :
+               TimeSteppingScheme::explicit_leapfrog;
+    if (scheme == TimeSteppingScheme::implicit_theta &&
+        stress_update_text == "MUSL")
+      throw InputError("Time stepping/Stress update = MUSL",
+                       "applies to the explicit scheme only; the implicit "
+                       "scheme uses the theta-centred stress of eqs. 12-13. "
+                       "Remove the entry or set it to USF.");
+    stress_update =
+      (stress_update_text == "MUSL") ? StressUpdate::musl : StressUpdate::usf;
+    if (velocity_update == "FLIP")
+      flip_fraction = 1.;
+    else if (velocity_update == "PIC")
+      flip_fraction = 0.;
+    if (time_step == 0. && cfl_number == 0.)
+      throw InputError("Time stepping/CFL number",
+                       "must be positive when Time step is zero.");
+  }
+
+
+
+  // ----------------------------------------------------- nonlinear solver
+
+  void
+  NonlinearSolverParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    prm.add_parameter(
+      "Tolerance",
+      tolerance,
+      "Newton stops when ||R|| / F_scale is below this value, R being the "
+      "residual of eq. 16 divided by the slot mass (velocity units) in the "
+      "Euclidean norm. Dimensionless.",
+      Patterns::Double(1e-14, 1.));
+    prm.add_parameter(
+      "Residual scale",
+      residual_scale_text,
+      "F_scale: 'initial residual' (the norm of R at the initial guess of "
+      "the step) or 'physical' (sqrt(number of unknowns) times Velocity "
+      "scale, so that the tolerance is a root-mean-square velocity error "
+      "relative to Velocity scale). Dimensionless.",
+      Patterns::Selection("initial residual|physical"));
+    prm.add_parameter(
+      "Velocity scale",
+      velocity_scale,
+      "The velocity that makes velocities dimensionless for the 'physical' "
+      "residual scale and the finite-difference step. Zero means the "
+      "largest dilatational wave speed of the materials. Units: "
+      "length/time.",
+      Patterns::Double(0.));
+    prm.add_parameter(
+      "Absolute tolerance",
+      absolute_tolerance,
+      "Newton also stops when the root-mean-square of R is below this "
+      "value times Velocity scale, so that steps that start at equilibrium "
+      "converge. Dimensionless.",
+      Patterns::Double(0., 1.));
+    prm.add_parameter("Maximum Newton iterations",
+                      max_iterations,
+                      "Newton iterations per step; a step that has not "
+                      "converged then is rejected (see Time stepping/"
+                      "Adaptive time stepping). Dimensionless.",
+                      Patterns::Integer(1, 1000));
+    prm.add_parameter(
+      "Forcing term",
+      forcing_text,
+      "Relative tolerance eta_k of the linear solve of Newton step k: "
+      "'constant' (Forcing constant) or 'Eisenstat-Walker' (choice 2: "
+      "gamma (||R_k|| / ||R_k-1||)^alpha with the usual safeguards, "
+      "bounded by Maximum forcing term). Dimensionless.",
+      Patterns::Selection("constant|Eisenstat-Walker"));
+    prm.add_parameter("Forcing constant",
+                      forcing_constant,
+                      "eta of the 'constant' forcing term, and eta_0 of "
+                      "Eisenstat-Walker. Dimensionless.",
+                      Patterns::Double(1e-12, 0.99));
+    prm.add_parameter("Maximum forcing term",
+                      forcing_maximum,
+                      "Upper bound of the Eisenstat-Walker eta_k. "
+                      "Dimensionless.",
+                      Patterns::Double(1e-12, 0.99));
+    prm.add_parameter("Eisenstat-Walker gamma",
+                      forcing_gamma,
+                      "gamma of Eisenstat-Walker choice 2. Dimensionless.",
+                      Patterns::Double(0., 1.));
+    prm.add_parameter("Eisenstat-Walker alpha",
+                      forcing_alpha,
+                      "alpha of Eisenstat-Walker choice 2. Dimensionless.",
+                      Patterns::Double(1., 2.));
+    prm.add_parameter(
+      "Differencing step",
+      differencing_text,
+      "Step eps of the finite-difference Jacobian-vector product J z = "
+      "(R(v + eps z) - R(v)) / eps, with velocities made dimensionless by "
+      "Velocity scale: 'Pernice-Walker' eps = sqrt(e (1 + ||v||)) / ||z|| "
+      "or 'Knoll-Keyes' eps = (e^(1/2) / (N ||z||)) sum_i |v_i| + e^(1/2), "
+      "e being Differencing error. Dimensionless.",
+      Patterns::Selection("Pernice-Walker|Knoll-Keyes"));
+    prm.add_parameter("Differencing error",
+                      differencing_error,
+                      "Relative error e of a residual evaluation used in the "
+                      "differencing step. Zero means the machine epsilon "
+                      "2.2e-16. Dimensionless.",
+                      Patterns::Double(0., 1e-2));
+    prm.add_parameter("Line search",
+                      line_search,
+                      "Backtrack along the Newton direction (halving the "
+                      "step) until ||R|| decreases sufficiently.");
+    prm.add_parameter("Maximum line search cuts",
+                      max_line_search_cuts,
+                      "Halvings of the Newton step before the step is "
+                      "rejected. Dimensionless.",
+                      Patterns::Integer(0, 60));
+    prm.add_parameter(
+      "Maximum contact status changes",
+      max_status_changes,
+      "The contact status (which grains touch, stick or slip) is frozen "
+      "within a Newton iteration and re-evaluated between iterations; after "
+      "this many changes in one step it is kept fixed. Dimensionless.",
+      Patterns::Integer(0, 100));
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  NonlinearSolverParameters::check()
+  {
+    residual_scale   = (residual_scale_text == "physical") ?
+                         ResidualScale::physical :
+                         ResidualScale::initial_residual;
+    eisenstat_walker = (forcing_text == "Eisenstat-Walker");
+    differencing     = (differencing_text == "Knoll-Keyes") ?
+                         DifferencingStep::knoll_keyes :
+                         DifferencingStep::pernice_walker;
+    if (differencing_error == 0.)
+      differencing_error = std::numeric_limits<double>::epsilon();
+    if (forcing_constant > forcing_maximum && eisenstat_walker)
+      throw InputError("Nonlinear solver/Forcing constant",
+                       "must not exceed Maximum forcing term.");
+  }
+
+
+
+  // -------------------------------------------------------- linear solver
+
+  void
+  LinearSolverParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.add_parameter(
+      "Solver",
+      solver_text,
+      "Krylov solver of each Newton step J dv = -R: 'GMRES' (deal.II "
+      "SolverGMRES with right preconditioning, eq. 17) or 'FGMRES' "
+      "(SolverFGMRES, needed when the preconditioner varies, i.e. Jacobi "
+      "sweeps > 1). Dimensionless.",
+      Patterns::Selection("GMRES|FGMRES"));
+    prm.add_parameter("Restart length",
+                      restart_length,
+                      "Krylov vectors kept before GMRES restarts (the cost of "
+                      "orthogonalisation grows with it). Dimensionless.",
+                      Patterns::Integer(1, 500));
+    prm.add_parameter("Maximum linear iterations",
+                      max_iterations,
+                      "Krylov iterations per Newton step; the Newton step "
+                      "then goes on with the best direction found. "
+                      "Dimensionless.",
+                      Patterns::Integer(1, 100000));
+    prm.add_parameter(
+      "Preconditioner",
+      preconditioner_text,
+      "'none', or 'probed Jacobi': weighted Jacobi with the diagonal of the "
+      "simplified Jacobian (eqs. 18-20) probed matrix-free with 2 3^dim "
+      "coloured residual evaluations once per step. Dimensionless.",
+      Patterns::Selection("none|probed Jacobi"));
+    prm.add_parameter("Jacobi weight",
+                      jacobi_weight,
+                      "omega of y = omega D^-1 r (irrelevant to GMRES with one "
+                      "sweep). Dimensionless.",
+                      Patterns::Double(0.01, 2.));
+    prm.add_parameter("Jacobi sweeps",
+                      jacobi_sweeps,
+                      "Weighted Jacobi sweeps per preconditioner "
+                      "application; each sweep after the first costs one "
+                      "Jacobian-vector product. Dimensionless.",
+                      Patterns::Integer(1, 20));
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  LinearSolverParameters::check()
+  {
+    flexible      = (solver_text == "FGMRES");
+    probed_jacobi = (preconditioner_text == "probed Jacobi");
+    if (jacobi_sweeps > 1 && !flexible && probed_jacobi)
+      throw InputError("Linear solver/Jacobi sweeps",
+                       "more than one sweep makes the preconditioner change "
+                       "from one application to the next (it contains "
+                       "finite-difference products); set Linear solver/"
+                       "Solver = FGMRES.");
+  }
+} // namespace grainmpm

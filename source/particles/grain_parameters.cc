@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_parsing.h>
+#include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/grain_parameters.h>
+
+#include <deal.II/base/patterns.h>
+#include <deal.II/base/utilities.h>
+
+namespace grainmpm
+{
+  // -------------------------------------------------------------- grains
+
+  template <int dim>
+  GrainParameters<dim>::GrainParameters()
+  {
+    shape_text = (dim == 2 ? "disk" : "sphere");
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        centre[d] = 0.5;
+        size[d]   = 0.2;
+        initial_velocity += std::string(d > 0 ? "; " : "") + "0";
+      }
+    prescribed_velocity = initial_velocity;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainParameters<dim>::declare(ParameterHandler &prm)
+  {
+    prm.add_parameter("Shape",
+                      shape_text,
+                      "The shape of the grain: 'disk', 'rectangle' or "
+                      "'polygon' in 2D, 'sphere' or 'box' in 3D. "
+                      "Dimensionless.",
+                      Patterns::Anything());
+    prm.add_parameter("Centre",
+                      centre,
+                      "Centre of the disk, sphere, rectangle or box. "
+                      "Units: length.");
+    prm.add_parameter("Radius",
+                      radius,
+                      "Radius of a disk or sphere. Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Size",
+                      size,
+                      "Edge lengths of a rectangle or box, one per "
+                      "direction (before rotation). Units: length.");
+    prm.add_parameter("Rotation",
+                      rotation,
+                      "Counter-clockwise rotation of a rectangle or box about "
+                      "its centre (about the z axis in 3D). Units: degrees.");
+    prm.add_parameter("Vertices",
+                      vertices_text,
+                      "Vertices of a polygon in counter-clockwise or "
+                      "clockwise order, as 'x1, y1; x2, y2; ...'. "
+                      "Units: length.");
+    prm.add_parameter("Material",
+                      material,
+                      "Name of the material (a subsection of 'Materials') "
+                      "the grain is made of. Dimensionless.");
+    prm.add_parameter("Initial velocity",
+                      initial_velocity,
+                      "Initial velocity of the grain's material points, one "
+                      "expression of the coordinates x, y (, z) per "
+                      "component, separated by ';' (deal.II FunctionParser "
+                      "syntax, e.g. '0.1; -0.2*x'). Units: length/time.");
+    prm.add_parameter("Rigid",
+                      rigid,
+                      "If true, the grain is a rigid body that moves with the "
+                      "prescribed velocity and acts on other grains through "
+                      "contact as a body of infinite mass (platens, pistons, "
+                      "impactors).");
+    prm.add_parameter(
+      "Prescribed velocity",
+      prescribed_velocity,
+      "Velocity of a rigid grain, one expression of x, y (, z) and the "
+      "time t per component separated by ';'. Ignored unless Rigid is "
+      "true. Units: length/time.");
+  }
+
+
+
+  template <int dim>
+  void
+  GrainParameters<dim>::check(const std::string &prefix)
+  {
+    const std::string entry = prefix + "Shape = " + shape_text;
+    if (shape_text == "disk")
+      shape = GrainShape::disk;
+    else if (shape_text == "rectangle")
+      shape = GrainShape::rectangle;
+    else if (shape_text == "polygon")
+      shape = GrainShape::polygon;
+    else if (shape_text == "sphere")
+      shape = GrainShape::sphere;
+    else if (shape_text == "box")
+      shape = GrainShape::box;
+    else
+      throw InputError(entry,
+                       "unknown shape (use " +
+                         std::string(dim == 2 ? "disk, rectangle or polygon" :
+                                                "sphere or box") +
+                         ").");
+
+    const bool is_2d_shape =
+      (shape == GrainShape::disk || shape == GrainShape::rectangle ||
+       shape == GrainShape::polygon);
+    if (is_2d_shape != (dim == 2))
+      throw InputError(entry,
+                       "this shape does not exist in " + std::to_string(dim) +
+                         "D (use " +
+                         std::string(dim == 2 ? "disk, rectangle or polygon" :
+                                                "sphere or box") +
+                         ").");
+
+    if ((shape == GrainShape::disk || shape == GrainShape::sphere) &&
+        !(radius > 0.))
+      throw InputError(prefix + "Radius", "must be positive.");
+    if (shape == GrainShape::rectangle || shape == GrainShape::box)
+      for (unsigned int d = 0; d < dim; ++d)
+        if (!(size[d] > 0.))
+          throw InputError(prefix + "Size",
+                           "every edge length must be positive.");
+
+    vertices.clear();
+    if (shape == GrainShape::polygon)
+      {
+        for (const auto &vertex :
+             Utilities::split_string_list(vertices_text, ';'))
+          {
+            const auto coordinates = parse_numbers(vertex, prefix + "Vertices");
+            if (coordinates.size() != dim)
+              throw InputError(prefix + "Vertices = " + vertices_text,
+                               "each vertex needs " + std::to_string(dim) +
+                                 " coordinates separated by ','.");
+            Point<dim> point;
+            for (unsigned int d = 0; d < dim; ++d)
+              point[d] = coordinates[d];
+            vertices.push_back(point);
+          }
+        if (vertices.size() < 3)
+          throw InputError(prefix + "Vertices = " + vertices_text,
+                           "a polygon needs at least three vertices.");
+      }
+
+    if (Utilities::split_string_list(initial_velocity, ';').size() != dim)
+      throw InputError(prefix + "Initial velocity = " + initial_velocity,
+                       "needs " + std::to_string(dim) +
+                         " expressions separated by ';'.");
+    if (rigid &&
+        Utilities::split_string_list(prescribed_velocity, ';').size() != dim)
+      throw InputError(prefix + "Prescribed velocity = " + prescribed_velocity,
+                       "needs " + std::to_string(dim) +
+                         " expressions separated by ';'.");
+  }
+
+
+
+  // ------------------------------------------------------ random packing
+
+  template <int dim>
+  void
+  RandomPackingParameters<dim>::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Random packing");
+    prm.add_parameter(
+      "Number of grains",
+      n_grains,
+      "Number of disks (2D) or spheres (3D) to generate by ballistic "
+      "deposition into the box between Lower corner and Upper corner "
+      "(dropped along -y at random lateral positions, each placed where it "
+      "comes to rest lowest among Drop attempts tries, touching the floor "
+      "or a grain), in addition to the described "
+      "grains. 0: none. The run writes them to packing.csv in the output "
+      "directory, a grain list file for 'Grains/Grain list file'. "
+      "Dimensionless.",
+      Patterns::Integer(0));
+    prm.add_parameter("Minimum radius",
+                      minimum_radius,
+                      "Smallest grain radius; radii are uniform between "
+                      "the minimum and the maximum. Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Maximum radius",
+                      maximum_radius,
+                      "Largest grain radius. Units: length.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Gap",
+                      gap,
+                      "Clearance between deposited grains as a fraction of "
+                      "the sum of their radii, so that no two grains share "
+                      "a material point at the start. Dimensionless.",
+                      Patterns::Double(0., 1.));
+    prm.add_parameter("Lower corner",
+                      lower_corner,
+                      "Corner of the deposition box with the smallest "
+                      "coordinates; its y coordinate is the floor. Units: "
+                      "length.");
+    prm.add_parameter("Upper corner",
+                      upper_corner,
+                      "Corner of the deposition box with the largest "
+                      "coordinates. Units: length.");
+    prm.add_parameter("Material",
+                      material,
+                      "Name of the material (a subsection of Materials) of "
+                      "the generated grains.");
+    prm.add_parameter("Drop attempts",
+                      n_candidates,
+                      "Each grain is dropped at this many random lateral "
+                      "positions and placed where it comes to rest lowest; "
+                      "more attempts fill holes and give denser packings "
+                      "(1: plain ballistic deposition). Dimensionless.",
+                      Patterns::Integer(1));
+    prm.add_parameter("Seed",
+                      seed,
+                      "Seed of the random numbers (std::mt19937): the same "
+                      "seed gives the same packing. Dimensionless.",
+                      Patterns::Integer(0));
+    prm.leave_subsection();
+  }
+
+
+
+  template <int dim>
+  void
+  RandomPackingParameters<dim>::check(
+    const BackgroundGridParameters<dim> &grid) const
+  {
+    if (!(maximum_radius >= minimum_radius) || !(minimum_radius > 0.))
+      throw InputError("Random packing/Maximum radius",
+                       "the radii must satisfy 0 < Minimum radius <= "
+                       "Maximum radius.");
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        if (!(upper_corner[d] - lower_corner[d] > 2. * maximum_radius))
+          throw InputError("Random packing/Upper corner",
+                           "the box must be wider than the largest grain "
+                           "in every direction.");
+        if (lower_corner[d] < grid.lower_corner[d] ||
+            upper_corner[d] > grid.upper_corner[d])
+          throw InputError("Random packing/Lower corner",
+                           "the deposition box must lie inside the "
+                           "background grid.");
+      }
+    if (material.empty())
+      throw InputError("Random packing/Material",
+                       "name the material of the generated grains.");
+  }
+
+
+
+  template struct GrainParameters<2>;
+  template struct GrainParameters<3>;
+  template struct RandomPackingParameters<2>;
+  template struct RandomPackingParameters<3>;
+} // namespace grainmpm
