@@ -89,6 +89,67 @@ namespace grainmpm
           velocities[k] -= shift;
       return shift.norm();
     }
+
+    /**
+     * The fields of one contact node copied from the slot vectors into
+     * contiguous arrays, for the contact law at the node, and the corrected
+     * velocities copied back.
+     */
+    template <int dim>
+    struct NodeFields
+    {
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+      /** Room for the largest contact node of @p layout. */
+      explicit NodeFields(const GrainFieldLayout<dim> &layout)
+      {
+        unsigned int capacity = 0;
+        for (const unsigned int node : layout.contact_nodes())
+          capacity = std::max(capacity,
+                              layout.node_slots_end(node) -
+                                layout.node_slots_begin(node));
+        // (std::vector<bool> has no data().)
+        rigid.reset(new bool[capacity]);
+      }
+
+      /** Copy the fields of @p node. */
+      void
+      gather(const GrainFieldLayout<dim> &layout,
+             const std::vector<bool>     &field_is_rigid,
+             const VectorType            &slot_masses,
+             const VectorType            &slot_normals,
+             const VectorType            &slot_velocities,
+             const unsigned int           node)
+      {
+        begin = layout.node_slots_begin(node);
+        n     = layout.node_slots_end(node) - begin;
+        masses.resize(n);
+        normals.resize(n);
+        velocities.resize(n);
+        for (unsigned int k = 0; k < n; ++k)
+          {
+            masses[k]     = slot_masses.local_element(begin + k);
+            rigid[k]      = field_is_rigid[layout.field(begin + k)];
+            normals[k]    = get_slot_vector<dim>(slot_normals, begin + k);
+            velocities[k] = get_slot_vector<dim>(slot_velocities, begin + k);
+          }
+      }
+
+      /** Copy the velocities back. */
+      void
+      scatter(VectorType &slot_velocities) const
+      {
+        for (unsigned int k = 0; k < n; ++k)
+          set_slot_vector<dim>(velocities[k], slot_velocities, begin + k);
+      }
+
+      unsigned int                begin = 0;
+      unsigned int                n     = 0;
+      std::vector<double>         masses;
+      std::vector<Tensor<1, dim>> normals;
+      std::vector<Tensor<1, dim>> velocities;
+      std::unique_ptr<bool[]>     rigid;
+    };
   } // namespace
 
 
@@ -374,41 +435,24 @@ namespace grainmpm
                                    const double                 mass_threshold,
                                    ContactStatus<dim>          *status) const
   {
-    std::vector<double>         node_masses;
-    std::vector<Tensor<1, dim>> node_normals, node_velocities, node_slips;
+    NodeFields<dim>             fields(layout);
+    std::vector<Tensor<1, dim>> node_slips;
     std::vector<ContactState>   node_states;
-    // Flags for the largest node, allocated once (std::vector<bool> has no
-    // data()).
-    unsigned int max_fields = 0;
-    for (const unsigned int node : layout.contact_nodes())
-      max_fields =
-        std::max(max_fields,
-                 layout.node_slots_end(node) - layout.node_slots_begin(node));
-    const std::unique_ptr<bool[]> rigid_flags(new bool[max_fields]);
-    unsigned int                  n_corrected = 0;
+    unsigned int                n_corrected = 0;
     for (const unsigned int node : layout.contact_nodes())
       {
-        const unsigned int begin = layout.node_slots_begin(node);
-        const unsigned int n     = layout.node_slots_end(node) - begin;
-        node_masses.resize(n);
-        node_normals.resize(n);
-        node_velocities.resize(n);
+        fields.gather(
+          layout, field_is_rigid, masses, normals, velocities, node);
+        const unsigned int n = fields.n;
         node_states.resize(n);
         node_slips.resize(n);
-        for (unsigned int k = 0; k < n; ++k)
-          {
-            node_masses[k]     = masses.local_element(begin + k);
-            rigid_flags[k]     = field_is_rigid[layout.field(begin + k)];
-            node_normals[k]    = get_slot_vector<dim>(normals, begin + k);
-            node_velocities[k] = get_slot_vector<dim>(velocities, begin + k);
-          }
         Tensor<1, dim> reference;
         const bool     corrected =
           project_node(n,
-                       node_masses.data(),
-                       rigid_flags.get(),
-                       node_normals.data(),
-                       node_velocities.data(),
+                       fields.masses.data(),
+                       fields.rigid.get(),
+                       fields.normals.data(),
+                       fields.velocities.data(),
                        parameters.model,
                        parameters.friction_coefficient,
                        mass_threshold,
@@ -418,14 +462,13 @@ namespace grainmpm
         if (status != nullptr)
           for (unsigned int k = 0; k < n; ++k)
             {
-              status->slot_state[begin + k]      = node_states[k];
-              status->slip_directions[begin + k] = node_slips[k];
-              status->references[begin + k]      = reference;
+              status->slot_state[fields.begin + k]      = node_states[k];
+              status->slip_directions[fields.begin + k] = node_slips[k];
+              status->references[fields.begin + k]      = reference;
             }
         if (corrected)
           {
-            for (unsigned int k = 0; k < n; ++k)
-              set_slot_vector<dim>(node_velocities[k], velocities, begin + k);
+            fields.scatter(velocities);
             if (node_in_contact != nullptr)
               (*node_in_contact)[node] = 1;
             ++n_corrected;
@@ -603,50 +646,34 @@ namespace grainmpm
   {
     if (!status.any_active)
       return 0;
-    const double                mu = friction_coefficient();
-    std::vector<double>         node_masses;
-    std::vector<Tensor<1, dim>> node_normals, node_velocities;
-    unsigned int                max_fields = 0;
-    for (const unsigned int node : layout.contact_nodes())
-      max_fields =
-        std::max(max_fields,
-                 layout.node_slots_end(node) - layout.node_slots_begin(node));
-    const std::unique_ptr<bool[]> rigid_flags(new bool[max_fields]);
-    unsigned int                  n_active = 0;
+    const double    mu = friction_coefficient();
+    NodeFields<dim> fields(layout);
+    unsigned int    n_active = 0;
     for (const unsigned int node : layout.contact_nodes())
       {
         const unsigned int begin = layout.node_slots_begin(node);
-        const unsigned int n     = layout.node_slots_end(node) - begin;
+        const unsigned int end   = layout.node_slots_end(node);
         bool               any   = false;
-        for (unsigned int k = 0; k < n; ++k)
-          any = any || (status.slot_state[begin + k] != ContactState::free);
+        for (unsigned int s = begin; s < end; ++s)
+          any = any || (status.slot_state[s] != ContactState::free);
         if (!any)
           continue;
         ++n_active;
         if (node_flags != nullptr)
           (*node_flags)[node] = 1;
-        node_masses.resize(n);
-        node_normals.resize(n);
-        node_velocities.resize(n);
-        for (unsigned int k = 0; k < n; ++k)
-          {
-            node_masses[k]     = masses.local_element(begin + k);
-            rigid_flags[k]     = field_is_rigid[layout.field(begin + k)];
-            node_normals[k]    = get_slot_vector<dim>(normals, begin + k);
-            node_velocities[k] = get_slot_vector<dim>(velocities, begin + k);
-          }
-        project_node_frozen(n,
-                            node_masses.data(),
-                            rigid_flags.get(),
-                            node_normals.data(),
+        fields.gather(
+          layout, field_is_rigid, masses, normals, velocities, node);
+        project_node_frozen(fields.n,
+                            fields.masses.data(),
+                            fields.rigid.get(),
+                            fields.normals.data(),
                             status.slot_state.data() + begin,
                             status.slip_directions.data() + begin,
                             reference,
                             status.references[begin],
                             mu,
-                            node_velocities.data());
-        for (unsigned int k = 0; k < n; ++k)
-          set_slot_vector<dim>(node_velocities[k], velocities, begin + k);
+                            fields.velocities.data());
+        fields.scatter(velocities);
       }
 
     for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
