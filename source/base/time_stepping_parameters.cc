@@ -61,9 +61,9 @@ namespace grainmpm
       stress_update_text,
       "Where in the explicit step the stress is updated: 'USF' (update "
       "stress first, from the grid velocity of the particle-to-grid "
-      "transfer, as in eqs. 8-9) or 'MUSL' (after the particle update, from "
-      "the grid velocity remapped from the new particle momenta). "
-      "Dimensionless.",
+      "transfer, as in eqs. 8-9 of Cummins & Brackbill) or 'MUSL' (after "
+      "the particle update, from the grid velocity remapped from the new "
+      "particle momenta). Dimensionless.",
       Patterns::Selection("USF|MUSL"));
     prm.add_parameter("End time",
                       end_time,
@@ -149,8 +149,8 @@ namespace grainmpm
       "Tolerance",
       tolerance,
       "Newton stops when ||R|| / F_scale is below this value, R being the "
-      "residual of eq. 16 divided by the slot mass (velocity units) in the "
-      "Euclidean norm. Dimensionless.",
+      "residual of eq. 16 of Cummins & Brackbill divided by the slot mass "
+      "(velocity units) in the Euclidean norm. Dimensionless.",
       Patterns::Double(1e-14, 1.));
     prm.add_parameter(
       "Residual scale",
@@ -283,9 +283,9 @@ namespace grainmpm
       "Solver",
       solver_text,
       "Krylov solver of each Newton step J dv = -R: 'GMRES' (deal.II "
-      "SolverGMRES with right preconditioning, eq. 17) or 'FGMRES' "
-      "(SolverFGMRES, needed when the preconditioner varies, i.e. Jacobi "
-      "sweeps > 1). Dimensionless.",
+      "SolverGMRES with right preconditioning, eq. 17 of Cummins & "
+      "Brackbill) or 'FGMRES' (SolverFGMRES, needed when the preconditioner "
+      "varies, i.e. more than one Jacobi sweep). Dimensionless.",
       Patterns::Selection("GMRES|FGMRES"));
     prm.add_parameter("Restart length",
                       restart_length,
@@ -302,8 +302,9 @@ namespace grainmpm
       "Preconditioner",
       preconditioner_text,
       "'none', or 'probed Jacobi': weighted Jacobi with the diagonal of the "
-      "simplified Jacobian (eqs. 18-20) probed matrix-free with 2 3^dim "
-      "coloured residual evaluations once per step. Dimensionless.",
+      "simplified Jacobian (eqs. 18-20 of Cummins & Brackbill) probed "
+      "matrix-free with 2 3^dim coloured residual evaluations once per step. "
+      "Dimensionless.",
       Patterns::Selection("none|probed Jacobi"));
     prm.add_parameter("Jacobi weight",
                       jacobi_weight,

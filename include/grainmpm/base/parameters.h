@@ -120,7 +120,7 @@ namespace grainmpm
   };
 
   /**
-   * The contact models of DESIGN.md section 5.
+   * How grains interact where they meet (subsection "Contact").
    */
   enum class ContactModel
   {
@@ -154,7 +154,7 @@ namespace grainmpm
   };
 
   /**
-   * The time integration schemes of DESIGN.md section 5.
+   * The time integration schemes (subsection "Time stepping").
    */
   enum class TimeSteppingScheme
   {
@@ -215,7 +215,8 @@ namespace grainmpm
 
   /**
    * How the finite-difference step of the Jacobian-vector product is chosen
-   * (reference/physics.md section 5.4).
+   * (the formulas are in the documentation of Nonlinear solver/Differencing
+   * step).
    */
   enum class DifferencingStep
   {

@@ -42,8 +42,8 @@ namespace grainmpm
    * positions ((i + 1/2)/n per direction), kept if they lie strictly inside
    * the grain's shape. Each point gets the mass density times its share of
    * the cell volume, the grain's initial velocity at its position, zero
-   * stress and F = I. Points are inserted with their known cell
-   * (DESIGN.md section 9).
+   * stress and F = I. Points are inserted with their known cell, so that
+   * no cell search is needed.
    */
   template <int dim>
   class GrainGenerator
