@@ -117,25 +117,18 @@ namespace grainmpm
           throw InputError(bc_entry,
                            "each item must read 'face: type', but '" + item +
                              "' does not.");
-        unsigned int face = 2 * dim;
+        std::vector<std::pair<std::string, unsigned int>> faces;
         for (unsigned int f = 0; f < 2 * dim; ++f)
-          if (parts[0] == face_names[f])
-            face = f;
-        if (face == 2 * dim)
-          throw InputError(bc_entry,
-                           "unknown face '" + parts[0] + "' (use " +
-                             (dim == 2 ? "x-, x+, y-, y+" :
-                                         "x-, x+, y-, y+, z-, z+") +
-                             ").");
+          faces.emplace_back(face_names[f], f);
+        const unsigned int face = parse_choice<unsigned int>(
+          bc_entry,
+          parts[0],
+          faces,
+          "unknown face '" + parts[0] + "' (use " +
+            (dim == 2 ? "x-, x+, y-, y+" : "x-, x+, y-, y+, z-, z+") + ").");
         const auto         words = Utilities::split_string_list(parts[1], ' ');
         BoundaryCondition &condition = boundary_conditions[face];
-        if (parts[1] == "free slip")
-          condition.type = BoundaryType::free_slip;
-        else if (parts[1] == "no slip")
-          condition.type = BoundaryType::no_slip;
-        else if (parts[1] == "open")
-          condition.type = BoundaryType::open;
-        else if (words.size() == 2 && words[0] == "friction")
+        if (words.size() == 2 && words[0] == "friction")
           {
             condition.type = BoundaryType::friction;
             condition.friction_coefficient =
@@ -146,10 +139,14 @@ namespace grainmpm
                                  " must not be negative.");
           }
         else
-          throw InputError(bc_entry,
-                           "unknown boundary type '" + parts[1] +
-                             "' for face " + parts[0] +
-                             " (use free slip, no slip, friction MU, open).");
+          condition.type = parse_choice<BoundaryType>(
+            bc_entry,
+            parts[1],
+            {{"free slip", BoundaryType::free_slip},
+             {"no slip", BoundaryType::no_slip},
+             {"open", BoundaryType::open}},
+            "unknown boundary type '" + parts[1] + "' for face " + parts[0] +
+              " (use free slip, no slip, friction MU, open).");
       }
   }
 
@@ -182,9 +179,11 @@ namespace grainmpm
   void
   PhysicsParameters<dim>::check()
   {
-    two_dimensional_model = (two_dimensional_model_text == "plane stress") ?
-                              TwoDimensionalModel::plane_stress :
-                              TwoDimensionalModel::plane_strain;
+    two_dimensional_model = parse_choice<TwoDimensionalModel>(
+      "Physics/Two-dimensional model = " + two_dimensional_model_text,
+      two_dimensional_model_text,
+      {{"plane strain", TwoDimensionalModel::plane_strain},
+       {"plane stress", TwoDimensionalModel::plane_stress}});
   }
 
 
@@ -195,7 +194,7 @@ namespace grainmpm
   MaterialParameters::declare(ParameterHandler &prm)
   {
     prm.add_parameter("Constitutive model",
-                      constitutive_model,
+                      constitutive_model_text,
                       "The stress update of this material: 'linear elastic' "
                       "(hypoelastic, Jaumann-rotated) or 'von Mises' (the "
                       "same elasticity with J2 plasticity and linear "
@@ -250,9 +249,14 @@ namespace grainmpm
 
 
   void
-  MaterialParameters::check() const
+  MaterialParameters::check()
   {
     const std::string entry = "Materials/" + name + "/";
+    constitutive_model      = parse_choice<ConstitutiveModelType>(
+      entry + "Constitutive model = " + constitutive_model_text,
+      constitutive_model_text,
+      {{"linear elastic", ConstitutiveModelType::linear_elastic},
+            {"von Mises", ConstitutiveModelType::von_mises}});
     if (!(density > 0.))
       throw InputError(entry + "Density",
                        "must be positive, but is " + std::to_string(density) +
@@ -265,7 +269,8 @@ namespace grainmpm
       throw InputError(entry + "Poisson's ratio",
                        "must lie strictly between -1 and 0.5, but is " +
                          std::to_string(poissons_ratio) + ".");
-    if (constitutive_model == "von Mises" && !(yield_stress > 0.))
+    if (constitutive_model == ConstitutiveModelType::von_mises &&
+        !(yield_stress > 0.))
       throw InputError(entry + "Yield stress",
                        "must be positive for the 'von Mises' model, but is " +
                          std::to_string(yield_stress) + ".");
@@ -372,12 +377,13 @@ namespace grainmpm
   void
   ContactParameters::check()
   {
-    if (model_text == "none")
-      model = ContactModel::none;
-    else if (model_text == "frictionless")
-      model = ContactModel::frictionless;
-    else
-      model = ContactModel::coulomb_friction;
+    model =
+      parse_choice<ContactModel>("Contact/Contact model = " + model_text,
+                                 model_text,
+                                 {{"none", ContactModel::none},
+                                  {"frictionless", ContactModel::frictionless},
+                                  {"Coulomb friction",
+                                   ContactModel::coulomb_friction}});
   }
 
 
@@ -523,7 +529,7 @@ namespace grainmpm
     nonlinear_solver.check();
     linear_solver.check();
     output.check();
-    for (const auto &material : materials)
+    for (auto &material : materials)
       material.check();
 
     // Grains from the list file come after the individually described ones

@@ -5,6 +5,7 @@
 // solver and Linear solver of the implicit scheme.
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_parsing.h>
 #include <grainmpm/base/parameters.h>
 
 #include <deal.II/base/patterns.h>
@@ -60,9 +61,9 @@ namespace grainmpm
       stress_update_text,
       "Where in the explicit step the stress is updated: 'USF' (update "
       "stress first, from the grid velocity of the particle-to-grid "
-      "transfer, as in eqs. 8-9) or 'MUSL' (after the particle update, from "
-      "the grid velocity remapped from the new particle momenta). "
-      "Dimensionless.",
+      "transfer, as in eqs. 8-9 of Cummins & Brackbill) or 'MUSL' (after "
+      "the particle update, from the grid velocity remapped from the new "
+      "particle momenta). Dimensionless.",
       Patterns::Selection("USF|MUSL"));
     prm.add_parameter("End time",
                       end_time,
@@ -82,7 +83,7 @@ namespace grainmpm
       Patterns::Double(0., 10.));
     prm.add_parameter(
       "Particle velocity update",
-      velocity_update,
+      velocity_update_text,
       "How particles get their new velocity from the grid: 'FLIP' (add the "
       "grid velocity change), 'PIC' (take the grid velocity) or 'blend' "
       "(FLIP fraction alpha of FLIP, 1 - alpha of PIC). Dimensionless.",
@@ -105,20 +106,31 @@ namespace grainmpm
   void
   TimeSteppingParameters::check()
   {
-    scheme = (scheme_text == "implicit theta") ?
-               TimeSteppingScheme::implicit_theta :
-               TimeSteppingScheme::explicit_leapfrog;
+    scheme = parse_choice<TimeSteppingScheme>(
+      "Time stepping/Scheme = " + scheme_text,
+      scheme_text,
+      {{"explicit leapfrog", TimeSteppingScheme::explicit_leapfrog},
+       {"implicit theta", TimeSteppingScheme::implicit_theta}});
+    stress_update = parse_choice<StressUpdate>(
+      "Time stepping/Stress update = " + stress_update_text,
+      stress_update_text,
+      {{"USF", StressUpdate::usf}, {"MUSL", StressUpdate::musl}});
     if (scheme == TimeSteppingScheme::implicit_theta &&
-        stress_update_text == "MUSL")
+        stress_update == StressUpdate::musl)
       throw InputError("Time stepping/Stress update = MUSL",
                        "applies to the explicit scheme only; the implicit "
                        "scheme uses the theta-centred stress of eqs. 12-13. "
                        "Remove the entry or set it to USF.");
-    stress_update =
-      (stress_update_text == "MUSL") ? StressUpdate::musl : StressUpdate::usf;
-    if (velocity_update == "FLIP")
+    velocity_update =
+      parse_choice<VelocityUpdate>("Time stepping/Particle velocity update = " +
+                                     velocity_update_text,
+                                   velocity_update_text,
+                                   {{"FLIP", VelocityUpdate::flip},
+                                    {"PIC", VelocityUpdate::pic},
+                                    {"blend", VelocityUpdate::blend}});
+    if (velocity_update == VelocityUpdate::flip)
       flip_fraction = 1.;
-    else if (velocity_update == "PIC")
+    else if (velocity_update == VelocityUpdate::pic)
       flip_fraction = 0.;
     if (time_step == 0. && cfl_number == 0.)
       throw InputError("Time stepping/CFL number",
@@ -137,8 +149,8 @@ namespace grainmpm
       "Tolerance",
       tolerance,
       "Newton stops when ||R|| / F_scale is below this value, R being the "
-      "residual of eq. 16 divided by the slot mass (velocity units) in the "
-      "Euclidean norm. Dimensionless.",
+      "residual of eq. 16 of Cummins & Brackbill divided by the slot mass "
+      "(velocity units) in the Euclidean norm. Dimensionless.",
       Patterns::Double(1e-14, 1.));
     prm.add_parameter(
       "Residual scale",
@@ -234,13 +246,24 @@ namespace grainmpm
   void
   NonlinearSolverParameters::check()
   {
-    residual_scale   = (residual_scale_text == "physical") ?
-                         ResidualScale::physical :
-                         ResidualScale::initial_residual;
-    eisenstat_walker = (forcing_text == "Eisenstat-Walker");
-    differencing     = (differencing_text == "Knoll-Keyes") ?
-                         DifferencingStep::knoll_keyes :
-                         DifferencingStep::pernice_walker;
+    const std::string entry = "Nonlinear solver/";
+    residual_scale          = parse_choice<ResidualScale>(
+      entry + "Residual scale = " + residual_scale_text,
+      residual_scale_text,
+      {{"initial residual", ResidualScale::initial_residual},
+                {"physical", ResidualScale::physical}});
+    forcing =
+      parse_choice<ForcingTerm>(entry + "Forcing term = " + forcing_text,
+                                forcing_text,
+                                {{"constant", ForcingTerm::constant},
+                                 {"Eisenstat-Walker",
+                                  ForcingTerm::eisenstat_walker}});
+    eisenstat_walker = (forcing == ForcingTerm::eisenstat_walker);
+    differencing     = parse_choice<DifferencingStep>(
+      entry + "Differencing step = " + differencing_text,
+      differencing_text,
+      {{"Pernice-Walker", DifferencingStep::pernice_walker},
+           {"Knoll-Keyes", DifferencingStep::knoll_keyes}});
     if (differencing_error == 0.)
       differencing_error = std::numeric_limits<double>::epsilon();
     if (forcing_constant > forcing_maximum && eisenstat_walker)
@@ -260,9 +283,9 @@ namespace grainmpm
       "Solver",
       solver_text,
       "Krylov solver of each Newton step J dv = -R: 'GMRES' (deal.II "
-      "SolverGMRES with right preconditioning, eq. 17) or 'FGMRES' "
-      "(SolverFGMRES, needed when the preconditioner varies, i.e. Jacobi "
-      "sweeps > 1). Dimensionless.",
+      "SolverGMRES with right preconditioning, eq. 17 of Cummins & "
+      "Brackbill) or 'FGMRES' (SolverFGMRES, needed when the preconditioner "
+      "varies, i.e. more than one Jacobi sweep). Dimensionless.",
       Patterns::Selection("GMRES|FGMRES"));
     prm.add_parameter("Restart length",
                       restart_length,
@@ -279,8 +302,9 @@ namespace grainmpm
       "Preconditioner",
       preconditioner_text,
       "'none', or 'probed Jacobi': weighted Jacobi with the diagonal of the "
-      "simplified Jacobian (eqs. 18-20) probed matrix-free with 2 3^dim "
-      "coloured residual evaluations once per step. Dimensionless.",
+      "simplified Jacobian (eqs. 18-20 of Cummins & Brackbill) probed "
+      "matrix-free with 2 3^dim coloured residual evaluations once per step. "
+      "Dimensionless.",
       Patterns::Selection("none|probed Jacobi"));
     prm.add_parameter("Jacobi weight",
                       jacobi_weight,
@@ -301,8 +325,17 @@ namespace grainmpm
   void
   LinearSolverParameters::check()
   {
-    flexible      = (solver_text == "FGMRES");
-    probed_jacobi = (preconditioner_text == "probed Jacobi");
+    solver = parse_choice<KrylovSolver>("Linear solver/Solver = " + solver_text,
+                                        solver_text,
+                                        {{"GMRES", KrylovSolver::gmres},
+                                         {"FGMRES", KrylovSolver::fgmres}});
+    preconditioner = parse_choice<Preconditioner>(
+      "Linear solver/Preconditioner = " + preconditioner_text,
+      preconditioner_text,
+      {{"none", Preconditioner::none},
+       {"probed Jacobi", Preconditioner::probed_jacobi}});
+    flexible      = (solver == KrylovSolver::fgmres);
+    probed_jacobi = (preconditioner == Preconditioner::probed_jacobi);
     if (jacobi_sweeps > 1 && !flexible && probed_jacobi)
       throw InputError("Linear solver/Jacobi sweeps",
                        "more than one sweep makes the preconditioner change "

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-#include <grainmpm/base/input_error.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/materials/linear_elastic.h>
 #include <grainmpm/materials/von_mises.h>
@@ -34,20 +33,23 @@ namespace grainmpm
   create_constitutive_model(const MaterialParameters &material,
                             const TwoDimensionalModel model)
   {
-    if (material.constitutive_model == "linear elastic")
-      return std::make_unique<LinearElastic<dim>>(material.density,
-                                                  material.youngs_modulus,
-                                                  material.poissons_ratio,
-                                                  model);
-    if (material.constitutive_model == "von Mises")
-      return std::make_unique<VonMises<dim>>(material.density,
-                                             material.youngs_modulus,
-                                             material.poissons_ratio,
-                                             material.yield_stress,
-                                             material.hardening_modulus,
-                                             model);
-    throw InputError("Materials/" + material.name + "/Constitutive model",
-                     "unknown model '" + material.constitutive_model + "'.");
+    switch (material.constitutive_model)
+      {
+        case ConstitutiveModelType::linear_elastic:
+          return std::make_unique<LinearElastic<dim>>(material.density,
+                                                      material.youngs_modulus,
+                                                      material.poissons_ratio,
+                                                      model);
+        case ConstitutiveModelType::von_mises:
+          return std::make_unique<VonMises<dim>>(material.density,
+                                                 material.youngs_modulus,
+                                                 material.poissons_ratio,
+                                                 material.yield_stress,
+                                                 material.hardening_modulus,
+                                                 model);
+      }
+    Assert(false, ExcInternalError());
+    return nullptr;
   }
 
 

@@ -90,22 +90,17 @@ namespace grainmpm
   GrainParameters<dim>::check(const std::string &prefix)
   {
     const std::string entry = prefix + "Shape = " + shape_text;
-    if (shape_text == "disk")
-      shape = GrainShape::disk;
-    else if (shape_text == "rectangle")
-      shape = GrainShape::rectangle;
-    else if (shape_text == "polygon")
-      shape = GrainShape::polygon;
-    else if (shape_text == "sphere")
-      shape = GrainShape::sphere;
-    else if (shape_text == "box")
-      shape = GrainShape::box;
-    else
-      throw InputError(entry,
-                       "unknown shape (use " +
-                         std::string(dim == 2 ? "disk, rectangle or polygon" :
-                                                "sphere or box") +
-                         ").");
+    shape                   = parse_choice<GrainShape>(
+      entry,
+      shape_text,
+      {{"disk", GrainShape::disk},
+                         {"rectangle", GrainShape::rectangle},
+                         {"polygon", GrainShape::polygon},
+                         {"sphere", GrainShape::sphere},
+                         {"box", GrainShape::box}},
+      "unknown shape (use " +
+        std::string(dim == 2 ? "disk, rectangle or polygon" : "sphere or box") +
+        ").");
 
     const bool is_2d_shape =
       (shape == GrainShape::disk || shape == GrainShape::rectangle ||

@@ -86,15 +86,26 @@ namespace grainmpm
   };
 
   /**
+   * The stress updates a material can have.
+   */
+  enum class ConstitutiveModelType
+  {
+    linear_elastic,
+    von_mises
+  };
+
+  /**
    * One named material in subsection "Materials".
    */
   struct MaterialParameters
   {
-    std::string name;
-    std::string constitutive_model = "linear elastic";
-    double      density            = 1.;
-    double      youngs_modulus     = 1.;
-    double      poissons_ratio     = 0.3;
+    std::string           name;
+    std::string           constitutive_model_text = "linear elastic";
+    ConstitutiveModelType constitutive_model =
+      ConstitutiveModelType::linear_elastic;
+    double density        = 1.;
+    double youngs_modulus = 1.;
+    double poissons_ratio = 0.3;
     /** von Mises: initial yield stress and plastic hardening modulus. */
     double yield_stress      = 0.;
     double hardening_modulus = 0.;
@@ -105,11 +116,11 @@ namespace grainmpm
     void
     declare(ParameterHandler &prm);
     void
-    check() const;
+    check();
   };
 
   /**
-   * The contact models of DESIGN.md section 5.
+   * How grains interact where they meet (subsection "Contact").
    */
   enum class ContactModel
   {
@@ -143,10 +154,7 @@ namespace grainmpm
   };
 
   /**
-   * Subsection "Time stepping".
-   */
-  /**
-   * The time integration schemes of DESIGN.md section 5.
+   * The time integration schemes (subsection "Time stepping").
    */
   enum class TimeSteppingScheme
   {
@@ -154,6 +162,19 @@ namespace grainmpm
     implicit_theta
   };
 
+  /**
+   * How the particles get their new velocity from the grid.
+   */
+  enum class VelocityUpdate
+  {
+    flip,
+    pic,
+    blend
+  };
+
+  /**
+   * Subsection "Time stepping".
+   */
   struct TimeSteppingParameters
   {
     std::string        scheme_text = "explicit leapfrog";
@@ -165,13 +186,15 @@ namespace grainmpm
     /** Cut dt on a failed implicit step and grow it back afterwards. */
     bool adaptive_time_stepping = true;
     /** Consecutive easy steps before dt is doubled back. */
-    unsigned int steps_before_growth     = 5;
-    std::string  stress_update_text      = "USF";
-    StressUpdate stress_update           = StressUpdate::usf;
-    double       end_time                = 1.;
-    double       time_step               = 0.;
-    double       cfl_number              = 0.25;
-    std::string  velocity_update         = "FLIP";
+    unsigned int   steps_before_growth  = 5;
+    std::string    stress_update_text   = "USF";
+    StressUpdate   stress_update        = StressUpdate::usf;
+    double         end_time             = 1.;
+    double         time_step            = 0.;
+    double         cfl_number           = 0.25;
+    std::string    velocity_update_text = "FLIP";
+    VelocityUpdate velocity_update      = VelocityUpdate::flip;
+    /** The FLIP weight: set by check() to 1 (FLIP) or 0 (PIC). */
     double       flip_fraction           = 1.;
     unsigned int maximum_number_of_steps = 100000000;
 
@@ -192,7 +215,8 @@ namespace grainmpm
 
   /**
    * How the finite-difference step of the Jacobian-vector product is chosen
-   * (reference/physics.md section 5.4).
+   * (the formulas are in the documentation of Nonlinear solver/Differencing
+   * step).
    */
   enum class DifferencingStep
   {
@@ -201,18 +225,29 @@ namespace grainmpm
   };
 
   /**
+   * The relative tolerance of the linear solve of a Newton step.
+   */
+  enum class ForcingTerm
+  {
+    constant,
+    eisenstat_walker
+  };
+
+  /**
    * Subsection "Nonlinear solver": the inexact Newton iteration of the
    * implicit scheme.
    */
   struct NonlinearSolverParameters
   {
-    double           tolerance            = 1e-6;
-    std::string      residual_scale_text  = "initial residual";
-    ResidualScale    residual_scale       = ResidualScale::initial_residual;
-    double           velocity_scale       = 0.;
-    double           absolute_tolerance   = 1e-12;
-    unsigned int     max_iterations       = 20;
-    std::string      forcing_text         = "Eisenstat-Walker";
+    double        tolerance           = 1e-6;
+    std::string   residual_scale_text = "initial residual";
+    ResidualScale residual_scale      = ResidualScale::initial_residual;
+    double        velocity_scale      = 0.;
+    double        absolute_tolerance  = 1e-12;
+    unsigned int  max_iterations      = 20;
+    std::string   forcing_text        = "Eisenstat-Walker";
+    ForcingTerm   forcing             = ForcingTerm::eisenstat_walker;
+    /** Set by check(): forcing is Eisenstat-Walker. */
     bool             eisenstat_walker     = true;
     double           forcing_constant     = 1e-2;
     double           forcing_maximum      = 0.9;
@@ -232,19 +267,41 @@ namespace grainmpm
   };
 
   /**
+   * The Krylov solvers of the Newton steps.
+   */
+  enum class KrylovSolver
+  {
+    gmres,
+    fgmres
+  };
+
+  /**
+   * The preconditioners of the Krylov solver.
+   */
+  enum class Preconditioner
+  {
+    none,
+    probed_jacobi
+  };
+
+  /**
    * Subsection "Linear solver": the Krylov solver of each Newton step and
    * its preconditioner.
    */
   struct LinearSolverParameters
   {
-    std::string  solver_text         = "GMRES";
-    bool         flexible            = false;
-    unsigned int restart_length      = 30;
-    unsigned int max_iterations      = 200;
-    std::string  preconditioner_text = "probed Jacobi";
-    bool         probed_jacobi       = true;
-    double       jacobi_weight       = 1.;
-    unsigned int jacobi_sweeps       = 1;
+    std::string  solver_text = "GMRES";
+    KrylovSolver solver      = KrylovSolver::gmres;
+    /** Set by check(): solver is FGMRES. */
+    bool           flexible            = false;
+    unsigned int   restart_length      = 30;
+    unsigned int   max_iterations      = 200;
+    std::string    preconditioner_text = "probed Jacobi";
+    Preconditioner preconditioner      = Preconditioner::probed_jacobi;
+    /** Set by check(): preconditioner is probed Jacobi. */
+    bool         probed_jacobi = true;
+    double       jacobi_weight = 1.;
+    unsigned int jacobi_sweeps = 1;
 
     void
     declare(ParameterHandler &prm);
