@@ -4,6 +4,7 @@
 #ifndef grainmpm_base_parameters_h
 #define grainmpm_base_parameters_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/particles/grain_parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -16,8 +17,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * What a face of the background box does to material that reaches it.
    */

@@ -4,6 +4,8 @@
 #ifndef grainmpm_base_step_statistics_h
 #define grainmpm_base_step_statistics_h
 
+#include <grainmpm/base/config.h>
+
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/particles/property_pool.h>
@@ -12,8 +14,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * What one step did.
    */

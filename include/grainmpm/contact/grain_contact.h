@@ -4,6 +4,7 @@
 #ifndef grainmpm_contact_grain_contact_h
 #define grainmpm_contact_grain_contact_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
@@ -17,8 +18,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The state of one constraint (a slot at a contact node, or a slot at a
    * wall): free (receding, left alone), sliding (the normal part of the

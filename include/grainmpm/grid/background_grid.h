@@ -4,6 +4,7 @@
 #ifndef grainmpm_grid_background_grid_h
 #define grainmpm_grid_background_grid_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 
 #include <deal.II/base/index_set.h>
@@ -22,8 +23,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The background grid of the material point method: a box of equal,
    * axis-aligned cells on a `parallel::distributed::Triangulation`, the

@@ -4,6 +4,7 @@
 #ifndef grainmpm_materials_constitutive_model_h
 #define grainmpm_materials_constitutive_model_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 
 #include <deal.II/base/symmetric_tensor.h>
@@ -13,8 +14,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The interface of a constitutive model: a pure function from the old
    * stress, the history and the increment of the displacement gradient

@@ -4,6 +4,7 @@
 #ifndef grainmpm_particles_grain_generator_h
 #define grainmpm_particles_grain_generator_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
 
@@ -16,8 +17,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * What the time loop needs to know about a grain beyond its material
    * points.

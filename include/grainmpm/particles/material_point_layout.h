@@ -4,14 +4,14 @@
 #ifndef grainmpm_particles_material_point_layout_h
 #define grainmpm_particles_material_point_layout_h
 
+#include <grainmpm/base/config.h>
+
 #include <deal.II/base/array_view.h>
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The layout of the properties every material point carries in the
    * property pool of the `Particles::ParticleHandler`: the only place that

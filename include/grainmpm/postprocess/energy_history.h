@@ -4,6 +4,7 @@
 #ifndef grainmpm_postprocess_energy_history_h
 #define grainmpm_postprocess_energy_history_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/time_integration/time_integrator.h>
@@ -18,8 +19,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The global energies and momentum of the deformable grains (rigid grains
    * are external bodies and are left out). In 2D all are per unit thickness.

@@ -4,6 +4,8 @@
 #ifndef grainmpm_postprocess_grain_history_h
 #define grainmpm_postprocess_grain_history_h
 
+#include <grainmpm/base/config.h>
+
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
@@ -16,8 +18,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * Rigid-body description of one grain from its material points.
    */

@@ -4,6 +4,7 @@
 #ifndef grainmpm_postprocess_output_writer_h
 #define grainmpm_postprocess_output_writer_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/time_integration/time_integrator.h>
@@ -20,8 +21,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * Principal stress difference of @p stress: in 2D the in-plane
    * sigma_1 - sigma_2 = sqrt((s_xx - s_yy)^2 + 4 s_xy^2) that photoelastic

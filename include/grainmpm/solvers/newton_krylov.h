@@ -4,6 +4,7 @@
 #ifndef grainmpm_solvers_newton_krylov_h
 #define grainmpm_solvers_newton_krylov_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
@@ -13,8 +14,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * A nonlinear system R(x) = 0 as the Jacobian-free Newton-Krylov solver
    * sees it: residual evaluations, a linearisation state that is frozen

@@ -4,12 +4,11 @@
 #ifndef grainmpm_time_integration_explicit_leapfrog_h
 #define grainmpm_time_integration_explicit_leapfrog_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/time_integration/time_integrator.h>
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The explicit leapfrog step of Cummins & Brackbill (2001), eqs. (7)-(10),
    * on the multi-grain grid field, with Bardenhagen-Brackbill-Sulsky

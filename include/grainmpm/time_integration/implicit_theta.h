@@ -4,14 +4,13 @@
 #ifndef grainmpm_time_integration_implicit_theta_h
 #define grainmpm_time_integration_implicit_theta_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/solvers/newton_krylov.h>
 #include <grainmpm/time_integration/theta_residual.h>
 #include <grainmpm/time_integration/time_integrator.h>
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The fully implicit theta step of Cummins & Brackbill (2001), eqs.
    * (11)-(20):

@@ -4,6 +4,7 @@
 #ifndef grainmpm_time_integration_theta_residual_h
 #define grainmpm_time_integration_theta_residual_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
@@ -22,8 +23,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The residual of the implicit theta scheme (Cummins & Brackbill 2001,
    * eq. 16), divided by the slot mass so

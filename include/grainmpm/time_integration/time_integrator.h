@@ -4,6 +4,7 @@
 #ifndef grainmpm_time_integration_time_integrator_h
 #define grainmpm_time_integration_time_integrator_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/step_statistics.h>
 #include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/materials/constitutive_model.h>
@@ -20,8 +21,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The largest dilatational wave speed of the materials of the deformable
    * grains (0 if there are none).

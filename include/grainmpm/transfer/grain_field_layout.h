@@ -4,6 +4,7 @@
 #ifndef grainmpm_transfer_grain_field_layout_h
 #define grainmpm_transfer_grain_field_layout_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/transfer/transfer_cache.h>
 
 #include <deal.II/base/partitioner.h>
@@ -17,8 +18,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The compact multi-valued grid field (doc/theory.md). A slot is
    * one (node, field) pair that particles of that field touch; each field

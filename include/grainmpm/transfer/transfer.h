@@ -4,6 +4,7 @@
 #ifndef grainmpm_transfer_transfer_h
 #define grainmpm_transfer_transfer_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/base/step_statistics.h>
 #include <grainmpm/grid/background_grid.h>
@@ -23,8 +24,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * The particle-grid transfer of one step: the single place where the
    * shape functions are evaluated (TransferCache::reinit) and where the

@@ -4,6 +4,7 @@
 #ifndef grainmpm_transfer_transfer_cache_h
 #define grainmpm_transfer_transfer_cache_h
 
+#include <grainmpm/base/config.h>
 #include <grainmpm/grid/background_grid.h>
 
 #include <deal.II/base/tensor.h>
@@ -14,8 +15,6 @@
 
 namespace grainmpm
 {
-  using namespace dealii;
-
   /**
    * Call @p action(cell, particle) for every locally owned particle, cell by
    * cell. This is the order of the TransferCache arrays: every loop that
