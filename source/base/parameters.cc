@@ -10,7 +10,6 @@
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
 
-#include <cmath>
 #include <fstream>
 #include <sstream>
 
