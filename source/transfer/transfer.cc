@@ -113,27 +113,29 @@ namespace grainmpm
       double *const  momentum     = momenta.begin();
       double *const  gradient_sum = full ? mass_gradients->begin() : nullptr;
       for_each_particle(
-        particle_handler, [&](const std::size_t p, const auto &particle) {
-          const auto         properties = particle->get_properties();
-          const double       mass       = properties[Layout::mass];
-          const unsigned int offset     = p * nodes_per_particle;
-          for (unsigned int v = 0; v < nodes_per_particle; ++v)
-            {
-              const unsigned int    slot  = cache.slots[offset + v];
-              const double          shape = cache.shape_values[offset + v];
-              const Tensor<1, dim> &gradient =
-                cache.shape_gradients[offset + v];
-              if constexpr (full)
-                mass_values[slot] += mass * shape;
-              for (unsigned int d = 0; d < dim; ++d)
-                {
-                  momentum[slot * dim + d] +=
-                    mass * shape * properties[Layout::velocity + d];
-                  if constexpr (full)
-                    gradient_sum[slot * dim + d] += mass * gradient[d];
-                }
-            }
-        });
+        particle_handler,
+        [&](const std::size_t p, const auto &particle)
+          __attribute__((always_inline)) {
+            const auto         properties = particle->get_properties();
+            const double       mass       = properties[Layout::mass];
+            const unsigned int offset     = p * nodes_per_particle;
+            for (unsigned int v = 0; v < nodes_per_particle; ++v)
+              {
+                const unsigned int    slot  = cache.slots[offset + v];
+                const double          shape = cache.shape_values[offset + v];
+                const Tensor<1, dim> &gradient =
+                  cache.shape_gradients[offset + v];
+                if constexpr (full)
+                  mass_values[slot] += mass * shape;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    momentum[slot * dim + d] +=
+                      mass * shape * properties[Layout::velocity + d];
+                    if constexpr (full)
+                      gradient_sum[slot * dim + d] += mass * gradient[d];
+                  }
+              }
+          });
     };
     Assert((masses == nullptr) == (mass_gradients == nullptr),
            ExcMessage("Masses and mass gradients go together."));
@@ -182,7 +184,9 @@ namespace grainmpm
     using Layout = MaterialPointLayout<dim>;
     layout.reinit_vector(forces, dim);
     for_each_particle(
-      particle_handler, [&](const std::size_t p, const auto &particle) {
+      particle_handler,
+      [&](const std::size_t p,
+          const auto       &particle) __attribute__((always_inline)) {
         const auto properties = particle->get_properties();
         if (grains[Layout::get_grain(properties)].rigid)
           return;
@@ -223,7 +227,8 @@ namespace grainmpm
     velocities.update_ghost_values();
     const double *const values = velocities.begin();
     for_each_particle(
-      particle_handler, [&](const std::size_t p, auto &particle) {
+      particle_handler,
+      [&](const std::size_t p, auto &particle) __attribute__((always_inline)) {
         auto               properties = particle->get_properties();
         const unsigned int grain      = Layout::get_grain(properties);
         if (grains[grain].rigid)
@@ -305,7 +310,8 @@ namespace grainmpm
     const double *const position_values  = position_velocities.begin();
 
     for_each_particle(
-      particle_handler, [&](const std::size_t p, auto &particle) {
+      particle_handler,
+      [&](const std::size_t p, auto &particle) __attribute__((always_inline)) {
         const unsigned int offset = p * per_particle;
         if (!error.empty())
           return;
