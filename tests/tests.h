@@ -10,6 +10,7 @@
 
 #include <deal.II/base/logstream.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/tensor.h>
 
 #include <cmath>
 #include <fstream>
@@ -55,6 +56,29 @@ uniform_random(unsigned long long &state)
 {
   state = 6364136223846793005ULL * state + 1442695040888963407ULL;
   return (state >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/** A vector with components uniform in [-1, 1) from @p state. */
+template <int dim>
+dealii::Tensor<1, dim>
+random_vector(unsigned long long &state)
+{
+  dealii::Tensor<1, dim> v;
+  for (unsigned int d = 0; d < dim; ++d)
+    v[d] = 2. * uniform_random(state) - 1.;
+  return v;
+}
+
+/** A unit vector from random_vector() (rejecting lengths below 0.1). */
+template <int dim>
+dealii::Tensor<1, dim>
+random_unit_vector(unsigned long long &state)
+{
+  dealii::Tensor<1, dim> v;
+  do
+    v = random_vector<dim>(state);
+  while (v.norm() < 0.1);
+  return v / v.norm();
 }
 
 #endif

@@ -24,32 +24,13 @@
 
 using namespace grainmpm;
 
+// One random sequence for the whole test.
+unsigned long long random_state = 1234;
+
 double
 uniform()
 {
-  static unsigned long long state = 1234;
-  return uniform_random(state);
-}
-
-template <int dim>
-Tensor<1, dim>
-random_vector()
-{
-  Tensor<1, dim> v;
-  for (unsigned int d = 0; d < dim; ++d)
-    v[d] = 2. * uniform() - 1.;
-  return v;
-}
-
-template <int dim>
-Tensor<1, dim>
-random_unit_vector()
-{
-  Tensor<1, dim> v;
-  do
-    v = random_vector<dim>();
-  while (v.norm() < 0.1);
-  return v / v.norm();
+  return uniform_random(random_state);
 }
 
 
@@ -111,8 +92,8 @@ test(const ContactModel model, const unsigned int n_fields)
       for (unsigned int k = 0; k < n_fields; ++k)
         {
           masses[k]     = 0.1 + 10. * uniform();
-          normals[k]    = random_unit_vector<dim>();
-          velocities[k] = random_vector<dim>();
+          normals[k]    = random_unit_vector<dim>(random_state);
+          velocities[k] = random_vector<dim>(random_state);
         }
       // Two fields get antiparallel normals (GrainContact::compute_normals).
       if (n_fields == 2)
@@ -139,20 +120,23 @@ test(const ContactModel model, const unsigned int n_fields)
       ++n_nodes_constrained;
 
       // The frozen law on the same velocities.
+      const auto frozen_law = [&](Tensor<1, dim> *x) {
+        GrainContact<dim>::project_node_frozen(
+          n_fields,
+          masses,
+          rigid,
+          normals,
+          states,
+          slips,
+          GrainContact<dim>::Reference::from_velocities,
+          reference,
+          mu,
+          x);
+      };
       Tensor<1, dim> frozen[4];
       for (unsigned int k = 0; k < n_fields; ++k)
         frozen[k] = velocities[k];
-      GrainContact<dim>::project_node_frozen(
-        n_fields,
-        masses,
-        rigid,
-        normals,
-        states,
-        slips,
-        GrainContact<dim>::Reference::from_velocities,
-        reference,
-        mu,
-        frozen);
+      frozen_law(frozen);
 
       Tensor<1, dim> momentum_before, momentum_after;
       double         scale = 0.;
@@ -178,21 +162,11 @@ test(const ContactModel model, const unsigned int n_fields)
       Tensor<1, dim> w[4], combined[4];
       for (unsigned int k = 0; k < n_fields; ++k)
         {
-          w[k]        = random_vector<dim>();
+          w[k]        = random_vector<dim>(random_state);
           combined[k] = 2. * velocities[k] + w[k];
         }
       for (Tensor<1, dim> *x : {w, combined})
-        GrainContact<dim>::project_node_frozen(
-          n_fields,
-          masses,
-          rigid,
-          normals,
-          states,
-          slips,
-          GrainContact<dim>::Reference::from_velocities,
-          reference,
-          mu,
-          x);
+        frozen_law(x);
       for (unsigned int k = 0; k < n_fields; ++k)
         max_linearity_error =
           std::max(max_linearity_error,
@@ -202,17 +176,7 @@ test(const ContactModel model, const unsigned int n_fields)
       if (n_fields > 2)
         {
           for (unsigned int pass = 0; pass < 1000; ++pass)
-            GrainContact<dim>::project_node_frozen(
-              n_fields,
-              masses,
-              rigid,
-              normals,
-              states,
-              slips,
-              GrainContact<dim>::Reference::from_velocities,
-              reference,
-              mu,
-              frozen);
+            frozen_law(frozen);
           max_iterated_violation =
             std::max(max_iterated_violation,
                      constraint_violation<dim>(

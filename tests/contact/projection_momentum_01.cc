@@ -16,33 +16,13 @@
 
 using namespace grainmpm;
 
-// A fixed linear congruential generator: uniform numbers in [0, 1).
+// One random sequence for the whole test.
+unsigned long long random_state = 2026;
+
 double
 uniform()
 {
-  static unsigned long long state = 2026;
-  return uniform_random(state);
-}
-
-template <int dim>
-Tensor<1, dim>
-random_vector()
-{
-  Tensor<1, dim> v;
-  for (unsigned int d = 0; d < dim; ++d)
-    v[d] = 2. * uniform() - 1.;
-  return v;
-}
-
-template <int dim>
-Tensor<1, dim>
-random_unit_vector()
-{
-  Tensor<1, dim> v;
-  do
-    v = random_vector<dim>();
-  while (v.norm() < 0.1);
-  return v / v.norm();
+  return uniform_random(random_state);
 }
 
 
@@ -68,10 +48,10 @@ test_two_grains(const ContactModel model)
   for (unsigned int trial = 0; trial < 1000; ++trial)
     {
       const double masses[2] = {0.1 + 10. * uniform(), 0.1 + 10. * uniform()};
-      const Tensor<1, dim> n = random_unit_vector<dim>();
+      const Tensor<1, dim> n = random_unit_vector<dim>(random_state);
       const Tensor<1, dim> normals[2]    = {n, -n};
-      Tensor<1, dim>       velocities[2] = {random_vector<dim>(),
-                                            random_vector<dim>()};
+      Tensor<1, dim>       velocities[2] = {random_vector<dim>(random_state),
+                                            random_vector<dim>(random_state)};
       const double         mu            = 0.6 * uniform();
       const Tensor<1, dim> before[2]     = {velocities[0], velocities[1]};
 
@@ -168,9 +148,9 @@ test_three_grains(const ContactModel model)
                                 0.1 + 10. * uniform()};
       // Normals as GrainContact::compute_normals makes them from the mass
       // gradients g_g: n_g = (2 g_g - sum_k g_k) / |...|.
-      const Tensor<1, dim> gradients[3] = {random_vector<dim>(),
-                                           random_vector<dim>(),
-                                           random_vector<dim>()};
+      const Tensor<1, dim> gradients[3] = {random_vector<dim>(random_state),
+                                           random_vector<dim>(random_state),
+                                           random_vector<dim>(random_state)};
       Tensor<1, dim>       normals[3];
       for (unsigned int g = 0; g < 3; ++g)
         {
@@ -178,9 +158,9 @@ test_three_grains(const ContactModel model)
             2. * gradients[g] - (gradients[0] + gradients[1] + gradients[2]);
           normals[g] /= normals[g].norm();
         }
-      Tensor<1, dim> velocities[3] = {random_vector<dim>(),
-                                      random_vector<dim>(),
-                                      random_vector<dim>()};
+      Tensor<1, dim> velocities[3] = {random_vector<dim>(random_state),
+                                      random_vector<dim>(random_state),
+                                      random_vector<dim>(random_state)};
       const double   mu            = 0.6 * uniform();
 
       Tensor<1, dim> momentum_before;
