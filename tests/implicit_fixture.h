@@ -78,7 +78,6 @@ namespace grainmpm
                    const LinearAlgebra::distributed::Vector<double> &z,
                    LinearAlgebra::distributed::Vector<double>       &f)
   {
-    constexpr unsigned int n_v = TransferCache<dim>::nodes_per_particle;
     f.reinit(z, true);
     f             = 0.;
     std::size_t p = 0;
@@ -87,22 +86,25 @@ namespace grainmpm
         const double volume =
           particle->get_properties()[MaterialPointLayout<dim>::volume];
         SymmetricTensor<2, dim> strain;
-        for (unsigned int v = 0; v < n_v; ++v)
+        for (unsigned int v = cache.first_entry[p];
+             v < cache.first_entry[p + 1];
+             ++v)
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = i; j < dim; ++j)
-              strain[i][j] +=
-                0.5 * (z.local_element(cache.slots[p * n_v + v] * dim + i) *
-                         cache.shape_gradients[p * n_v + v][j] +
-                       z.local_element(cache.slots[p * n_v + v] * dim + j) *
-                         cache.shape_gradients[p * n_v + v][i]);
+              strain[i][j] += 0.5 * (z.local_element(cache.slots[v] * dim + i) *
+                                       cache.shape_gradients[v][j] +
+                                     z.local_element(cache.slots[v] * dim + j) *
+                                       cache.shape_gradients[v][i]);
         const SymmetricTensor<2, dim> stress =
           lambda * trace(strain) * unit_symmetric_tensor<dim>() +
           2. * mu * strain;
-        for (unsigned int v = 0; v < n_v; ++v)
+        for (unsigned int v = cache.first_entry[p];
+             v < cache.first_entry[p + 1];
+             ++v)
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
-              f.local_element(cache.slots[p * n_v + v] * dim + i) +=
-                volume * stress[i][j] * cache.shape_gradients[p * n_v + v][j];
+              f.local_element(cache.slots[v] * dim + i) +=
+                volume * stress[i][j] * cache.shape_gradients[v][j];
         ++p;
       });
   }

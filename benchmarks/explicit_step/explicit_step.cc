@@ -9,6 +9,8 @@
 // Prints ns/particle/step of both and their ratio.
 //
 // Usage: explicit_step [n_cells=512] [particles_per_direction=4] [steps=10]
+//                      [shape functions=linear]
+// (the plain kernel always uses the linear hats).
 
 #include <grainmpm/time_integration/explicit_leapfrog.h>
 
@@ -29,6 +31,7 @@ main(int argc, char *argv[])
   const unsigned int n_cells = argc > 1 ? std::stoi(argv[1]) : 512;
   const unsigned int per_dir = argc > 2 ? std::stoi(argv[2]) : 4;
   const unsigned int n_steps = argc > 3 ? std::stoi(argv[3]) : 10;
+  const std::string  kernel  = argc > 4 ? argv[4] : "linear";
   const double dt = 0.1 / n_cells / benchmarks::ElasticBlock::wave_speed();
 
   // The same block as the plain kernel: the cells inside [0.25, 0.75]^2.
@@ -37,7 +40,9 @@ main(int argc, char *argv[])
     per_dir,
     "0.1; 0",
     dt,
-    "subsection Physics\n  set Gravity = 0, -1\nend\n");
+    "subsection Physics\n  set Gravity = 0, -1\nend\n"
+    "subsection Material points\n  set Shape functions = " +
+      kernel + "\nend\n");
   auto               &particle_handler = *block.particle_handler;
   ExplicitLeapfrog<2> stepper(block.parameters,
                               *block.grid,
@@ -68,9 +73,10 @@ main(int argc, char *argv[])
 
   const auto plain = benchmarks::run_plain_kernel(n_cells, per_dir, n_steps);
 
-  std::cout << "explicit step benchmark: " << n_cells << "^2 cells, "
-            << static_cast<unsigned long>(n_particles) << " material points, "
-            << n_steps << " steps (" << n_sorted << " with sorting)\n"
+  std::cout << "explicit step benchmark: " << n_cells << "^2 cells, " << kernel
+            << " shape functions, " << static_cast<unsigned long>(n_particles)
+            << " material points, " << n_steps << " steps (" << n_sorted
+            << " with sorting)\n"
             << "  grainmpm ExplicitLeapfrog: " << grainmpm_ns
             << " ns/particle/step (" << 1e3 / grainmpm_ns
             << " M particle-updates/s)\n"

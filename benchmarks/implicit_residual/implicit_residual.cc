@@ -15,7 +15,7 @@
 //    residual time); goal <= 1.6.
 //
 // Usage: implicit_residual [n_cells=512] [particles_per_direction=4]
-//                          [evaluations=10]
+//                          [evaluations=10] [shape functions=linear]
 
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/implicit_theta.h>
@@ -49,8 +49,9 @@ namespace
    */
   struct PlainResidual
   {
+    std::vector<unsigned int> first_entry; // entries of each particle
     std::vector<unsigned int> slots;
-    std::vector<double>       gradients; // 4 x 2 per particle
+    std::vector<double>       gradients; // 2 per entry
     std::vector<double>       stresses;  // xx, yy, zz, xy per particle
     std::vector<double>       volumes;
     std::vector<double>       masses;
@@ -70,10 +71,11 @@ namespace
       const std::size_t n_particles = volumes.size();
       for (std::size_t p = 0; p < n_particles; ++p)
         {
-          const unsigned int *s   = &slots[4 * p];
-          const double       *G   = &gradients[8 * p];
+          const unsigned int *s     = slots.data();
+          const double       *G     = gradients.data();
+          const unsigned int  begin = first_entry[p], end = first_entry[p + 1];
           double              L00 = 0., L01 = 0., L10 = 0., L11 = 0.;
-          for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int v = begin; v < end; ++v)
             {
               const double vx = theta_v[2 * s[v]], vy = theta_v[2 * s[v] + 1];
               L00 += vx * G[2 * v];
@@ -97,7 +99,7 @@ namespace
                        txy = (1. - theta) * sig[3] + theta * nxy;
           const double J   = (1. + L00) * (1. + L11) - L01 * L10;
           const double vol = volumes[p] * ((1. - theta) + theta * J);
-          for (unsigned int v = 0; v < 4; ++v)
+          for (unsigned int v = begin; v < end; ++v)
             {
               forces[2 * s[v]] -= vol * (txx * G[2 * v] + txy * G[2 * v + 1]);
               forces[2 * s[v] + 1] -=
@@ -120,6 +122,7 @@ main(int argc, char *argv[])
   const unsigned int n_cells = argc > 1 ? std::stoi(argv[1]) : 512;
   const unsigned int per_dir = argc > 2 ? std::stoi(argv[2]) : 4;
   const unsigned int n_evals = argc > 3 ? std::stoi(argv[3]) : 10;
+  const std::string  kernel  = argc > 4 ? argv[4] : "linear";
   const double       lambda  = benchmarks::ElasticBlock::lambda;
   const double       mu      = benchmarks::ElasticBlock::mu;
   const double       dt = 2. / n_cells / benchmarks::ElasticBlock::wave_speed();
@@ -131,7 +134,9 @@ main(int argc, char *argv[])
     dt,
     "subsection Time stepping\n  set Scheme = implicit theta\nend\n"
     "subsection Nonlinear solver\n  set Forcing term = constant\n"
-    "  set Forcing constant = 1e-6\n  set Tolerance = 1e-8\nend\n");
+    "  set Forcing constant = 1e-6\n  set Tolerance = 1e-8\nend\n"
+    "subsection Material points\n  set Shape functions = " +
+      kernel + "\nend\n");
   auto            &particle_handler = *block.particle_handler;
   const auto      &grid             = *block.grid;
   ImplicitTheta<2> stepper(block.parameters,
@@ -154,9 +159,15 @@ main(int argc, char *argv[])
   PlainResidual       plain;
   TransferCache<2>    cache;
   GrainFieldLayout<2> layout;
-  cache.reinit(grid, particle_handler, {0});
+  cache.reinit(grid,
+               particle_handler,
+               {0},
+               block.parameters.material_points.shape_functions,
+               Tensor<1, 2>(
+                 {0.5 / n_cells / per_dir, 0.5 / n_cells / per_dir}));
   layout.reinit(cache, grid);
-  plain.slots = cache.slots;
+  plain.first_entry = cache.first_entry;
+  plain.slots       = cache.slots;
   for (const auto &G : cache.shape_gradients)
     {
       plain.gradients.push_back(G[0]);
@@ -200,6 +211,7 @@ main(int argc, char *argv[])
            (newton.linear_iterations * residual_seconds);
 
   std::cout << "implicit residual benchmark: " << n_cells << "^2 cells, "
+            << kernel << " shape functions, "
             << static_cast<unsigned long>(n_particles) << " material points, "
             << V.size() << " unknowns, CFL 2\n"
             << "  grainmpm ThetaResidual:  "

@@ -8,6 +8,8 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace grainmpm
@@ -109,6 +111,46 @@ namespace grainmpm
                   }
               }
         }
+    // The lattice of the locally relevant nodes.
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lattice_origin[d] = std::numeric_limits<int>::max();
+        lattice_extent[d] = 0;
+      }
+    std::array<int, dim> upper_index;
+    upper_index.fill(std::numeric_limits<int>::min());
+    for (unsigned int node = 0; node < n_local_nodes; ++node)
+      {
+        const std::array<int, dim> index = node_lattice_index(node);
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lattice_origin[d] = std::min(lattice_origin[d], index[d]);
+            upper_index[d]    = std::max(upper_index[d], index[d]);
+          }
+      }
+    if (n_local_nodes == 0)
+      lattice_origin.fill(0);
+    std::size_t n_lattice_points = (n_local_nodes > 0 ? 1 : 0);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (n_local_nodes > 0)
+        {
+          lattice_extent[d] = upper_index[d] - lattice_origin[d] + 1;
+          n_lattice_points *= lattice_extent[d];
+        }
+    lattice_nodes.assign(n_lattice_points, numbers::invalid_unsigned_int);
+    for (unsigned int node = 0; node < n_local_nodes; ++node)
+      {
+        const std::array<int, dim> index    = node_lattice_index(node);
+        std::size_t                position = 0;
+        std::size_t                stride   = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            position += stride * (index[d] - lattice_origin[d]);
+            stride *= lattice_extent[d];
+          }
+        lattice_nodes[position] = node;
+      }
+
     // Walls act on the slots of owned nodes (their owner applies them).
     boundary_node_list.clear();
     for (unsigned int node = 0; node < n_owned_nodes(); ++node)
@@ -225,6 +267,29 @@ namespace grainmpm
   BackgroundGrid<dim>::node_position(const unsigned int node) const
   {
     return node_positions[node];
+  }
+
+
+
+  template <int dim>
+  std::array<int, dim>
+  BackgroundGrid<dim>::node_lattice_index(const unsigned int node) const
+  {
+    std::array<int, dim> index;
+    for (unsigned int d = 0; d < dim; ++d)
+      index[d] = static_cast<int>(
+        std::lround((node_positions[node][d] - parameters.lower_corner[d]) /
+                    cell_extent[d]));
+    return index;
+  }
+
+
+
+  template <int dim>
+  const std::vector<unsigned int> &
+  BackgroundGrid<dim>::n_cells() const
+  {
+    return parameters.n_cells;
   }
 
 

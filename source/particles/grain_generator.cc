@@ -60,10 +60,11 @@ namespace grainmpm
     const BackgroundGrid<dim>       &grid,
     Particles::ParticleHandler<dim> &particle_handler) const
   {
-    using Layout                       = MaterialPointLayout<dim>;
-    const auto          &grains        = parameters.grains;
-    const unsigned int   n_grains      = grains.size();
-    const unsigned int   per_direction = parameters.particles_per_cell;
+    using Layout                = MaterialPointLayout<dim>;
+    const auto        &grains   = parameters.grains;
+    const unsigned int n_grains = grains.size();
+    const unsigned int per_direction =
+      parameters.material_points.particles_per_cell;
     const unsigned int   per_cell = Utilities::fixed_power<dim>(per_direction);
     const Tensor<1, dim> h        = grid.cell_size();
     double               cell_volume = 1.;

@@ -13,8 +13,9 @@ namespace grainmpm
 {
   namespace
   {
-    // Fields a node can hold. A node touches 2^dim cells; with a few grains
-    // per cell 4 * 2^dim is far above what packings produce.
+    // Fields a node can hold. A node's weights reach into 2^dim cells (4^dim
+    // with GIMP, partly); with a few grains per cell 4 * 2^dim is far above
+    // what packings produce.
     template <int dim>
     constexpr unsigned int max_fields_per_node = 4U << dim;
   } // namespace
@@ -27,12 +28,10 @@ namespace grainmpm
                                 const BackgroundGrid<dim> &grid)
   {
     constexpr unsigned int capacity = max_fields_per_node<dim>;
-    constexpr unsigned int per_particle =
-      TransferCache<dim>::nodes_per_particle;
-    using Message              = std::vector<types::global_dof_index>;
-    const unsigned int n_nodes = grid.n_nodes();
-    n_owned_nodes              = grid.n_owned_nodes();
-    mpi_communicator           = grid.get_triangulation().get_communicator();
+    using Message                   = std::vector<types::global_dof_index>;
+    const unsigned int n_nodes      = grid.n_nodes();
+    n_owned_nodes                   = grid.n_owned_nodes();
+    mpi_communicator = grid.get_triangulation().get_communicator();
     const Utilities::MPI::Partitioner &nodes = *grid.node_partitioner();
 
     // The position of @p field in the list of @p node, appended if new;
@@ -70,9 +69,9 @@ namespace grainmpm
     node_field_scratch.resize(std::size_t(n_nodes) * capacity);
     const std::size_t n_particles = cache.n_particles();
     for (std::size_t p = 0; p < n_particles; ++p)
-      for (unsigned int v = 0; v < per_particle; ++v)
-        cache.slots[p * per_particle + v] =
-          find_or_add(cache.nodes[p * per_particle + v], cache.fields[p]);
+      for (unsigned int e = cache.first_entry[p]; e < cache.first_entry[p + 1];
+           ++e)
+        cache.slots[e] = find_or_add(cache.nodes[e], cache.fields[p]);
 
     // Pass 2: tell the owners of the ghost nodes which fields this rank has
     // there ([node, count, fields...] per node); the owners add them.
@@ -196,18 +195,16 @@ namespace grainmpm
         }
 
     // Pass 6: local position -> slot number.
-    for (std::size_t p = 0; p < n_particles; ++p)
-      for (unsigned int v = 0; v < per_particle; ++v)
-        {
-          const unsigned int node = cache.nodes[p * per_particle + v];
-          unsigned int      &slot = cache.slots[p * per_particle + v];
-          slot =
-            node_slot_offsets[node] +
-            (node < n_owned_nodes ?
-               slot :
-               ghost_positions[std::size_t(node - n_owned_nodes) * capacity +
-                               slot]);
-        }
+    for (std::size_t e = 0; e < cache.nodes.size(); ++e)
+      {
+        const unsigned int node = cache.nodes[e];
+        unsigned int      &slot = cache.slots[e];
+        slot                    = node_slot_offsets[node] +
+               (node < n_owned_nodes ?
+                  slot :
+                  ghost_positions[std::size_t(node - n_owned_nodes) * capacity +
+                                  slot]);
+      }
 
     // The vector partitioners with 1 and dim numbers per slot, built here
     // by all ranks together (their construction communicates).

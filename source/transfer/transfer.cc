@@ -84,7 +84,17 @@ namespace grainmpm
   void
   Transfer<dim>::reinit(const Particles::ParticleHandler<dim> &particle_handler)
   {
-    cache.reinit(grid, particle_handler, field_of_grain);
+    // A particle's box is its share of the regular arrangement of the
+    // points: half the point spacing on each side.
+    Tensor<1, dim> half_width;
+    for (unsigned int d = 0; d < dim; ++d)
+      half_width[d] = 0.5 * grid.cell_size()[d] /
+                      parameters.material_points.particles_per_cell;
+    cache.reinit(grid,
+                 particle_handler,
+                 field_of_grain,
+                 parameters.material_points.shape_functions,
+                 half_width);
     layout.reinit(cache, grid);
   }
 
@@ -118,13 +128,12 @@ namespace grainmpm
           __attribute__((always_inline)) {
             const auto         properties = particle->get_properties();
             const double       mass       = properties[Layout::mass];
-            const unsigned int offset     = p * nodes_per_particle;
-            for (unsigned int v = 0; v < nodes_per_particle; ++v)
+            const unsigned int end        = cache.first_entry[p + 1];
+            for (unsigned int e = cache.first_entry[p]; e < end; ++e)
               {
-                const unsigned int    slot  = cache.slots[offset + v];
-                const double          shape = cache.shape_values[offset + v];
-                const Tensor<1, dim> &gradient =
-                  cache.shape_gradients[offset + v];
+                const unsigned int    slot     = cache.slots[e];
+                const double          shape    = cache.shape_values[e];
+                const Tensor<1, dim> &gradient = cache.shape_gradients[e];
                 if constexpr (full)
                   mass_values[slot] += mass * shape;
                 for (unsigned int d = 0; d < dim; ++d)
@@ -185,30 +194,30 @@ namespace grainmpm
     layout.reinit_vector(forces, dim);
     for_each_particle(
       particle_handler,
-      [&](const std::size_t p,
-          const auto       &particle) __attribute__((always_inline)) {
-        const auto properties = particle->get_properties();
-        if (grains[Layout::get_grain(properties)].rigid)
-          return;
-        const unsigned int          offset = p * nodes_per_particle;
-        const double                mass   = properties[Layout::mass];
-        const double                volume = properties[Layout::volume];
-        const SymmetricTensor<2, 3> stress = Layout::get_stress(properties);
-        for (unsigned int v = 0; v < nodes_per_particle; ++v)
-          {
-            const unsigned int    slot     = cache.slots[offset + v];
-            const double          shape    = cache.shape_values[offset + v];
-            const Tensor<1, dim> &gradient = cache.shape_gradients[offset + v];
-            for (unsigned int i = 0; i < dim; ++i)
-              {
-                double divergence = 0.;
-                for (unsigned int j = 0; j < dim; ++j)
-                  divergence += stress[i][j] * gradient[j];
-                forces.local_element(slot * dim + i) +=
-                  -volume * divergence + mass * shape * gravity[i];
-              }
-          }
-      });
+      [&](const std::size_t p, const auto &particle)
+        __attribute__((always_inline)) {
+          const auto properties = particle->get_properties();
+          if (grains[Layout::get_grain(properties)].rigid)
+            return;
+          const unsigned int          end    = cache.first_entry[p + 1];
+          const double                mass   = properties[Layout::mass];
+          const double                volume = properties[Layout::volume];
+          const SymmetricTensor<2, 3> stress = Layout::get_stress(properties);
+          for (unsigned int e = cache.first_entry[p]; e < end; ++e)
+            {
+              const unsigned int    slot     = cache.slots[e];
+              const double          shape    = cache.shape_values[e];
+              const Tensor<1, dim> &gradient = cache.shape_gradients[e];
+              for (unsigned int i = 0; i < dim; ++i)
+                {
+                  double divergence = 0.;
+                  for (unsigned int j = 0; j < dim; ++j)
+                    divergence += stress[i][j] * gradient[j];
+                  forces.local_element(slot * dim + i) +=
+                    -volume * divergence + mass * shape * gravity[i];
+                }
+            }
+        });
     forces.compress(VectorOperation::add);
   }
 
@@ -292,16 +301,15 @@ namespace grainmpm
     const double                     dt,
     StepStatistics                  &statistics)
   {
-    using Layout                        = MaterialPointLayout<dim>;
-    constexpr unsigned int per_particle = nodes_per_particle;
-    const double           flip  = parameters.time_stepping.flip_fraction;
-    const Tensor<1, dim>  &h     = grid.cell_size();
-    const Point<dim>      &lower = grid.lower_corner();
-    const Point<dim>      &upper = grid.upper_corner();
-    Vector<double>         prescribed(dim);
-    double                 max_speed_square        = 0.;
-    double                 particle_kinetic_change = 0.;
-    std::string            error;
+    using Layout                = MaterialPointLayout<dim>;
+    const double          flip  = parameters.time_stepping.flip_fraction;
+    const Tensor<1, dim> &h     = grid.cell_size();
+    const Point<dim>     &lower = grid.lower_corner();
+    const Point<dim>     &upper = grid.upper_corner();
+    Vector<double>        prescribed(dim);
+    double                max_speed_square        = 0.;
+    double                particle_kinetic_change = 0.;
+    std::string           error;
     velocities_new.update_ghost_values();
     velocities_p2g.update_ghost_values();
     position_velocities.update_ghost_values();
@@ -312,7 +320,6 @@ namespace grainmpm
     for_each_particle(
       particle_handler,
       [&](const std::size_t p, auto &particle) __attribute__((always_inline)) {
-        const unsigned int offset = p * per_particle;
         if (!error.empty())
           return;
         auto               properties   = particle->get_properties();
@@ -339,11 +346,12 @@ namespace grainmpm
             // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC:
             // v_p = sum S v^new; x_p += dt sum_i S_ip v_i (v^L explicit,
             // v^theta implicit).
-            Tensor<1, dim> increment, interpolated, moved;
-            for (unsigned int v = 0; v < per_particle; ++v)
+            Tensor<1, dim>     increment, interpolated, moved;
+            const unsigned int end = cache.first_entry[p + 1];
+            for (unsigned int e = cache.first_entry[p]; e < end; ++e)
               {
-                const unsigned int slot  = cache.slots[offset + v];
-                const double       shape = cache.shape_values[offset + v];
+                const unsigned int slot  = cache.slots[e];
+                const double       shape = cache.shape_values[e];
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     const double v_new = new_values[slot * dim + d];

@@ -4,64 +4,225 @@
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/transfer/transfer_cache.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace grainmpm
 {
+  namespace
+  {
+    /** The hat N(u) = max(0, 1 - |u|). */
+    inline double
+    hat(const double u)
+    {
+      return std::max(0., 1. - std::abs(u));
+    }
+
+    /** Phi(u), the integral of the hat from -infinity to u. */
+    inline double
+    hat_integral(const double u)
+    {
+      if (u <= -1.)
+        return 0.;
+      if (u >= 1.)
+        return 1.;
+      if (u <= 0.)
+        return 0.5 * (1. + u) * (1. + u);
+      return 1. - 0.5 * (1. - u) * (1. - u);
+    }
+
+    /**
+     * The GIMP weights along one axis, in units of the cell size: a
+     * particle whose interval is [a, b] (cut at the box faces) and the
+     * nodes at offsets -1, 0, 1, 2 from the lower vertex of its cell. Keeps
+     * the nodes with a positive weight: their offsets, values and
+     * derivatives (per unit of the cell size).
+     */
+    struct AxisWeights
+    {
+      unsigned int n = 0;
+      int          offsets[4];
+      double       values[4];
+      double       derivatives[4];
+
+      void
+      compute(const double a, const double b)
+      {
+        n                           = 0;
+        const double inverse_length = 1. / (b - a);
+        for (int offset = -1; offset <= 2; ++offset)
+          {
+            const double value =
+              (hat_integral(b - offset) - hat_integral(a - offset)) *
+              inverse_length;
+            if (value > 0.)
+              {
+                offsets[n] = offset;
+                values[n]  = value;
+                derivatives[n] =
+                  (hat(b - offset) - hat(a - offset)) * inverse_length;
+                ++n;
+              }
+          }
+      }
+    };
+  } // namespace
+
+
+
   template <int dim>
   void
   TransferCache<dim>::reinit(
     const BackgroundGrid<dim>             &grid,
     const Particles::ParticleHandler<dim> &particle_handler,
-    const std::vector<unsigned int>       &field_of_grain)
+    const std::vector<unsigned int>       &field_of_grain,
+    const ShapeFunctions                   shape_functions,
+    const Tensor<1, dim>                  &half_width)
   {
-    const std::size_t n = particle_handler.n_locally_owned_particles();
-    nodes.resize(n * nodes_per_particle);
-    shape_values.resize(n * nodes_per_particle);
-    shape_gradients.resize(n * nodes_per_particle);
+    using Layout          = MaterialPointLayout<dim>;
+    this->shape_functions = shape_functions;
+    const std::size_t  n  = particle_handler.n_locally_owned_particles();
+    const unsigned int per_particle =
+      shape_functions == ShapeFunctions::linear ? (1U << dim) :
+                                                  max_nodes_per_particle;
+    first_entry.resize(n + 1);
+    nodes.resize(n * per_particle);
+    shape_values.resize(n * per_particle);
+    shape_gradients.resize(n * per_particle);
     fields.resize(n);
-    slots.resize(n * nodes_per_particle);
 
     Tensor<1, dim> inverse_h;
     for (unsigned int d = 0; d < dim; ++d)
       inverse_h[d] = 1. / grid.cell_size()[d];
 
-    // Loop over cells, then over the particles in each cell: the node table
-    // entry is looked up once per cell.
-    std::size_t p = 0;
-    for_each_particle(
-      grid, particle_handler, [&](const auto &cell, const auto &particle) {
-        const unsigned int *cell_nodes =
-          grid.cell_nodes(cell->active_cell_index());
-        const Point<dim> xi = particle->get_reference_location();
-        // Q1: S = prod_d N_d, N_d = xi_d (vertex bit 1) or 1 - xi_d.
-        double one_d_values[dim][2];
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            one_d_values[d][0] = 1. - xi[d];
-            one_d_values[d][1] = xi[d];
-          }
-        for (unsigned int v = 0; v < nodes_per_particle; ++v)
-          {
-            double         value = 1.;
-            Tensor<1, dim> gradient;
+    std::size_t  p     = 0;
+    unsigned int entry = 0;
+    if (shape_functions == ShapeFunctions::linear)
+      {
+        // Loop over cells, then over the particles in each cell: the node
+        // table entry is looked up once per cell.
+        for_each_particle(
+          grid, particle_handler, [&](const auto &cell, const auto &particle) {
+            const unsigned int *cell_nodes =
+              grid.cell_nodes(cell->active_cell_index());
+            const Point<dim> xi = particle->get_reference_location();
+            // Q1: S = prod_d N_d, N_d = xi_d (vertex bit 1) or 1 - xi_d.
+            double one_d_values[dim][2];
             for (unsigned int d = 0; d < dim; ++d)
               {
-                const unsigned int bit = (v >> d) & 1U;
-                value *= one_d_values[d][bit];
-                double derivative = (bit ? 1. : -1.) * inverse_h[d];
-                for (unsigned int e = 0; e < dim; ++e)
-                  if (e != d)
-                    derivative *= one_d_values[e][(v >> e) & 1U];
-                gradient[d] = derivative;
+                one_d_values[d][0] = 1. - xi[d];
+                one_d_values[d][1] = xi[d];
               }
-            nodes[p * nodes_per_particle + v]           = cell_nodes[v];
-            shape_values[p * nodes_per_particle + v]    = value;
-            shape_gradients[p * nodes_per_particle + v] = gradient;
-          }
-        fields[p] = field_of_grain[MaterialPointLayout<dim>::get_grain(
-          particle->get_properties())];
-        ++p;
-      });
+            first_entry[p] = entry;
+            for (unsigned int v = 0; v < per_particle; ++v, ++entry)
+              {
+                double         value = 1.;
+                Tensor<1, dim> gradient;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    const unsigned int bit = (v >> d) & 1U;
+                    value *= one_d_values[d][bit];
+                    double derivative = (bit ? 1. : -1.) * inverse_h[d];
+                    for (unsigned int e = 0; e < dim; ++e)
+                      if (e != d)
+                        derivative *= one_d_values[e][(v >> e) & 1U];
+                    gradient[d] = derivative;
+                  }
+                nodes[entry]           = cell_nodes[v];
+                shape_values[entry]    = value;
+                shape_gradients[entry] = gradient;
+              }
+            fields[p] = field_of_grain[MaterialPointLayout<dim>::get_grain(
+              particle->get_properties())];
+            ++p;
+          });
+      }
+    else
+      {
+        // Half-widths in units of the cell size, at most half a cell so
+        // that a particle touches at most 3 nodes per axis.
+        Tensor<1, dim> initial_width;
+        for (unsigned int d = 0; d < dim; ++d)
+          initial_width[d] = std::min(0.5, half_width[d] * inverse_h[d]);
+        const std::vector<unsigned int> &n_cells = grid.n_cells();
+        for_each_particle(
+          grid, particle_handler, [&](const auto &cell, const auto &particle) {
+            // The lattice index of the cell's lower vertex, and the
+            // particle's interval per axis in cell units, cut at the box.
+            const std::array<int, dim> cell_index = grid.node_lattice_index(
+              grid.cell_nodes(cell->active_cell_index())[0]);
+            const Point<dim> xi         = particle->get_reference_location();
+            const auto       properties = particle->get_properties();
+            Tensor<1, dim>   width      = initial_width;
+            if (shape_functions == ShapeFunctions::cpgimp)
+              {
+                const Tensor<2, dim> F =
+                  Layout::get_deformation_gradient(properties);
+                // Half-width along axis d: l_0 sqrt((F F^T)_dd), the length
+                // of row d of F, unchanged by rotations; kept above 1e-6
+                // cells so that (Phi(b) - Phi(a)) / (b - a) stays accurate.
+                for (unsigned int d = 0; d < dim; ++d)
+                  width[d] =
+                    std::min(0.5, std::max(1e-6, width[d] * F[d].norm()));
+              }
+            AxisWeights  axes[dim];
+            unsigned int n_axis[dim];
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double a =
+                  std::max(xi[d] - width[d], -1. * cell_index[d]);
+                const double b =
+                  std::min(xi[d] + width[d],
+                           static_cast<double>(n_cells[d]) - cell_index[d]);
+                axes[d].compute(a, b);
+                n_axis[d] = axes[d].n;
+              }
+            first_entry[p]         = entry;
+            unsigned int n_entries = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              n_entries *= n_axis[d];
+            for (unsigned int k = 0; k < n_entries; ++k, ++entry)
+              {
+                std::array<int, dim> node_index;
+                unsigned int         axis_entry[dim];
+                unsigned int         rest = k;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    axis_entry[d] = rest % n_axis[d];
+                    rest /= n_axis[d];
+                    node_index[d] =
+                      cell_index[d] + axes[d].offsets[axis_entry[d]];
+                  }
+                double         value = 1.;
+                Tensor<1, dim> gradient;
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    value *= axes[d].values[axis_entry[d]];
+                    double derivative =
+                      axes[d].derivatives[axis_entry[d]] * inverse_h[d];
+                    for (unsigned int e = 0; e < dim; ++e)
+                      if (e != d)
+                        derivative *= axes[e].values[axis_entry[e]];
+                    gradient[d] = derivative;
+                  }
+                const unsigned int node = grid.node_at(node_index);
+                Assert(node != numbers::invalid_unsigned_int,
+                       ExcInternalError());
+                nodes[entry]           = node;
+                shape_values[entry]    = value;
+                shape_gradients[entry] = gradient;
+              }
+            fields[p] =
+              field_of_grain[MaterialPointLayout<dim>::get_grain(properties)];
+            ++p;
+          });
+      }
     AssertDimension(p, n);
+    first_entry[n] = entry;
+    nodes.resize(entry);
+    shape_values.resize(entry);
+    shape_gradients.resize(entry);
+    slots.resize(entry);
   }
 
 

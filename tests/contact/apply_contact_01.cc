@@ -30,9 +30,8 @@ void
 test()
 {
   deallog << "dim = " << dim << std::endl;
-  using Layout           = MaterialPointLayout<dim>;
-  using VectorType       = LinearAlgebra::distributed::Vector<double>;
-  constexpr unsigned n_v = TransferCache<dim>::nodes_per_particle;
+  using Layout     = MaterialPointLayout<dim>;
+  using VectorType = LinearAlgebra::distributed::Vector<double>;
 
   BackgroundGridParameters<dim> parameters;
   parameters.n_cells                  = std::vector<unsigned int>(dim, 4);
@@ -73,17 +72,19 @@ test()
                         const auto   properties = particle->get_properties();
                         const double m          = properties[Layout::mass];
                         const auto   v = Layout::get_velocity(properties);
-                        for (unsigned int k = 0; k < n_v; ++k)
+                        for (unsigned int k = cache.first_entry[p];
+                             k < cache.first_entry[p + 1];
+                             ++k)
                           {
-                            const unsigned int s = cache.slots[p * n_v + k];
+                            const unsigned int s = cache.slots[k];
                             masses.local_element(s) +=
-                              m * cache.shape_values[p * n_v + k];
+                              m * cache.shape_values[k];
                             for (unsigned int d = 0; d < dim; ++d)
                               {
                                 velocities.local_element(s * dim + d) +=
-                                  m * cache.shape_values[p * n_v + k] * v[d];
+                                  m * cache.shape_values[k] * v[d];
                                 mass_gradients.local_element(s * dim + d) +=
-                                  m * cache.shape_gradients[p * n_v + k][d];
+                                  m * cache.shape_gradients[k][d];
                               }
                           }
                         ++p;

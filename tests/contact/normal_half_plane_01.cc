@@ -29,9 +29,8 @@ void
 test()
 {
   deallog << "dim = " << dim << std::endl;
-  using Layout           = MaterialPointLayout<dim>;
-  using VectorType       = LinearAlgebra::distributed::Vector<double>;
-  constexpr unsigned n_v = TransferCache<dim>::nodes_per_particle;
+  using Layout     = MaterialPointLayout<dim>;
+  using VectorType = LinearAlgebra::distributed::Vector<double>;
 
   // Unit box, h = 0.25; surface at x_s = 0.375, the middle of the second
   // column of cells.
@@ -63,10 +62,11 @@ test()
   VectorType mass_gradients;
   layout.reinit_vector(mass_gradients, dim);
   for (unsigned int p = 0; p < cache.n_particles(); ++p)
-    for (unsigned int v = 0; v < n_v; ++v)
+    for (unsigned int v = cache.first_entry[p]; v < cache.first_entry[p + 1];
+         ++v)
       for (unsigned int d = 0; d < dim; ++d)
-        mass_gradients.local_element(cache.slots[p * n_v + v] * dim + d) +=
-          masses[p] * cache.shape_gradients[p * n_v + v][d];
+        mass_gradients.local_element(cache.slots[v] * dim + d) +=
+          masses[p] * cache.shape_gradients[v][d];
 
   auto slot_vector = [&](const VectorType &vector, const unsigned int s) {
     Tensor<1, dim> value;

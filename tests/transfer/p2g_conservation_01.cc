@@ -40,8 +40,7 @@ check_layout(const BackgroundGrid<dim>             &grid,
              const Particles::ParticleHandler<dim> &particle_handler,
              const std::vector<unsigned int>       &field_of_grain)
 {
-  using Layout           = MaterialPointLayout<dim>;
-  constexpr unsigned n_v = TransferCache<dim>::nodes_per_particle;
+  using Layout = MaterialPointLayout<dim>;
 
   deallog << "field of grain = (" << field_of_grain[0] << ", "
           << field_of_grain[1] << ")" << std::endl;
@@ -68,8 +67,9 @@ check_layout(const BackgroundGrid<dim>             &grid,
   // The expected slots: distinct (node, field) pairs touched.
   std::set<std::pair<unsigned int, unsigned int>> pairs;
   for (unsigned int p = 0; p < cache.n_particles(); ++p)
-    for (unsigned int v = 0; v < n_v; ++v)
-      pairs.insert({cache.nodes[p * n_v + v], field_of_grain[grains[p]]});
+    for (unsigned int v = cache.first_entry[p]; v < cache.first_entry[p + 1];
+         ++v)
+      pairs.insert({cache.nodes[v], field_of_grain[grains[p]]});
   std::vector<unsigned int> fields_at_node(grid.n_nodes(), 0);
   for (const auto &pair : pairs)
     ++fields_at_node[pair.first];
@@ -100,11 +100,11 @@ check_layout(const BackgroundGrid<dim>             &grid,
   // Every (particle, vertex) pair points to the slot of its node and field.
   unsigned int bad_pairs = 0;
   for (unsigned int p = 0; p < cache.n_particles(); ++p)
-    for (unsigned int v = 0; v < n_v; ++v)
+    for (unsigned int v = cache.first_entry[p]; v < cache.first_entry[p + 1];
+         ++v)
       {
-        const unsigned int s = cache.slots[p * n_v + v];
-        if (s >= layout.n_slots() ||
-            layout.node(s) != cache.nodes[p * n_v + v] ||
+        const unsigned int s = cache.slots[v];
+        if (s >= layout.n_slots() || layout.node(s) != cache.nodes[v] ||
             layout.field(s) != field_of_grain[grains[p]])
           ++bad_pairs;
       }
@@ -116,10 +116,11 @@ check_layout(const BackgroundGrid<dim>             &grid,
   layout.reinit_vector(slot_mass, 1);
   layout.reinit_vector(slot_momentum, dim);
   for (unsigned int p = 0; p < cache.n_particles(); ++p)
-    for (unsigned int v = 0; v < n_v; ++v)
+    for (unsigned int v = cache.first_entry[p]; v < cache.first_entry[p + 1];
+         ++v)
       {
-        const unsigned int s      = cache.slots[p * n_v + v];
-        const double       weight = masses[p] * cache.shape_values[p * n_v + v];
+        const unsigned int s      = cache.slots[v];
+        const double       weight = masses[p] * cache.shape_values[v];
         slot_mass.local_element(s) += weight;
         for (unsigned int d = 0; d < dim; ++d)
           slot_momentum.local_element(s * dim + d) += weight * velocities[p][d];

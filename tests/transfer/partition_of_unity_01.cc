@@ -111,7 +111,7 @@ test()
   cache.reinit(grid, particle_handler, {0});
   AssertDimension(cache.n_particles(), positions.size());
 
-  constexpr unsigned int n_v = TransferCache<dim>::nodes_per_particle;
+  constexpr unsigned int n_v = 1U << dim;
 
   // Cache position p -> particle id (the cache follows for_each_particle).
   std::vector<types::particle_index> id_of(cache.n_particles());
@@ -135,6 +135,7 @@ test()
       const unsigned int p   = p_of_id[i];
       double             sum = 0.;
       Tensor<1, dim>     gradient_sum;
+      AssertDimension(cache.first_entry[p + 1] - cache.first_entry[p], n_v);
       for (unsigned int v = 0; v < n_v; ++v)
         {
           const double value = cache.shape_values[p * n_v + v];

@@ -129,6 +129,41 @@ namespace grainmpm
   };
 
   /**
+   * The shape functions of the particle-grid transfer (subsection
+   * "Material points").
+   */
+  enum class ShapeFunctions
+  {
+    /** The Q1 hats S_i(x_p) of the grid (classic MPM). */
+    linear,
+    /**
+     * Q1 hats averaged over a fixed box around each point (uGIMP,
+     * Bardenhagen & Kober 2004).
+     */
+    ugimp,
+    /**
+     * Q1 hats averaged over a box that stretches with the deformation
+     * (cpGIMP, Wallstedt & Guilkey 2008).
+     */
+    cpgimp
+  };
+
+  /**
+   * Subsection "Material points".
+   */
+  struct MaterialPointParameters
+  {
+    unsigned int   particles_per_cell   = 2;
+    std::string    shape_functions_text = "linear";
+    ShapeFunctions shape_functions      = ShapeFunctions::linear;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+
+  /**
    * Subsection "Contact".
    */
   struct ContactParameters
@@ -370,8 +405,8 @@ namespace grainmpm
     /** How many of the grains come from the grain list file. */
     unsigned int n_listed_grains = 0;
     /** How many of the grains (the last ones) the random packing made. */
-    unsigned int              n_packed_grains    = 0;
-    unsigned int              particles_per_cell = 2;
+    unsigned int              n_packed_grains = 0;
+    MaterialPointParameters   material_points;
     ContactParameters         contact;
     TimeSteppingParameters    time_stepping;
     NonlinearSolverParameters nonlinear_solver;

@@ -19,6 +19,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <array>
 #include <vector>
 
 namespace grainmpm
@@ -108,6 +109,27 @@ namespace grainmpm
     node_position(const unsigned int node) const;
 
     /**
+     * The lattice index of local node @p node: its integer coordinates
+     * (x - lower corner) / cell size, from 0 to the number of cells.
+     */
+    std::array<int, dim>
+    node_lattice_index(const unsigned int node) const;
+
+    /**
+     * The local node with lattice index @p index, or
+     * numbers::invalid_unsigned_int if that is outside the box or not a
+     * locally relevant node (a node of a locally owned or ghost cell). The
+     * nodes of the cells next to a locally owned cell are all locally
+     * relevant: the kernels that reach one cell further use this.
+     */
+    unsigned int
+    node_at(const std::array<int, dim> &index) const;
+
+    /** Number of cells in each direction. */
+    const std::vector<unsigned int> &
+    n_cells() const;
+
+    /**
      * A bit mask of the box faces local node @p node lies on: bit f is set
      * for face f (x-, x+, y-, y+, z-, z+).
      */
@@ -156,6 +178,14 @@ namespace grainmpm
     std::vector<unsigned int>                          node_face_masks;
     std::vector<unsigned int>                          boundary_node_list;
     std::vector<types::global_dof_index>               node_global_indices;
+    /**
+     * The locally relevant nodes on the lattice of the box: the smallest
+     * index range holding them (origin and extent) and the local node at
+     * each lattice point of it (numbers::invalid_unsigned_int if none).
+     */
+    std::array<int, dim>      lattice_origin;
+    std::array<int, dim>      lattice_extent;
+    std::vector<unsigned int> lattice_nodes;
   };
 
 
@@ -165,6 +195,25 @@ namespace grainmpm
   BackgroundGrid<dim>::cell_nodes(const unsigned int active_cell_index) const
   {
     return cell_node_table.data() + nodes_per_cell * active_cell_index;
+  }
+
+
+
+  template <int dim>
+  inline unsigned int
+  BackgroundGrid<dim>::node_at(const std::array<int, dim> &index) const
+  {
+    std::size_t position = 0;
+    std::size_t stride   = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const int i = index[d] - lattice_origin[d];
+        if (i < 0 || i >= lattice_extent[d])
+          return numbers::invalid_unsigned_int;
+        position += stride * i;
+        stride *= lattice_extent[d];
+      }
+    return lattice_nodes[position];
   }
 } // namespace grainmpm
 

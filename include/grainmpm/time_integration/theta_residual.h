@@ -70,9 +70,12 @@ namespace grainmpm
    *
    * The simplified Jacobian of the preconditioner (eq. 20) holds v_ref at
    * contact nodes fixed at its value at the freezing point and skips the
-   * momentum shift; then slots couple only to slots of the same field in
-   * the 3^dim node neighbourhood, and its diagonal is probed with
-   * 2 3^dim (2D: 18, 3D: 81) coloured residual evaluations.
+   * momentum shift; then a slot couples only to slots of the same field
+   * at nodes that share a particle with its node: at most one node away
+   * per axis with linear shape functions, two with GIMP (a point touches
+   * up to 3 nodes per axis). Nodes with the same index modulo 3 per axis
+   * never share a particle, so the diagonal is probed exactly for every
+   * kernel with 2 3^dim (2D: 18, 3D: 81) coloured residual evaluations.
    */
   template <int dim>
   class ThetaResidual : public NonlinearProblem

@@ -26,8 +26,9 @@ namespace grainmpm
 {
   /**
    * The particle-grid transfer of one step: the single place where the
-   * shape functions are evaluated (TransferCache::reinit) and where the
-   * particle loops of both time integrators live.
+   * shape functions (`Material points/Shape functions`: linear, uGIMP or
+   * cpGIMP) are evaluated (TransferCache::reinit) and where the particle
+   * loops of both time integrators live.
    *
    * reinit() evaluates the kernel at the particle positions at the start
    * of the step and builds the multi-valued grid layout (the slots);
@@ -49,10 +50,6 @@ namespace grainmpm
   {
   public:
     using VectorType = LinearAlgebra::distributed::Vector<double>;
-
-    /** Nodes a particle's shape functions touch. */
-    static constexpr unsigned int nodes_per_particle =
-      TransferCache<dim>::nodes_per_particle;
 
     /**
      * Every grain has its own velocity field, except with `Contact model =
@@ -156,16 +153,16 @@ namespace grainmpm
     Tensor<2, dim>
     velocity_gradient(const std::size_t p, const double *velocities) const
     {
-      const unsigned int   *slots = cache.slots.data() + p * nodes_per_particle;
-      const Tensor<1, dim> *gradients =
-        cache.shape_gradients.data() + p * nodes_per_particle;
-      Tensor<2, dim> gradient;
-      for (unsigned int v = 0; v < nodes_per_particle; ++v)
+      const unsigned int   *slots     = cache.slots.data();
+      const Tensor<1, dim> *gradients = cache.shape_gradients.data();
+      const unsigned int    end       = cache.first_entry[p + 1];
+      Tensor<2, dim>        gradient;
+      for (unsigned int e = cache.first_entry[p]; e < end; ++e)
         for (unsigned int i = 0; i < dim; ++i)
           {
-            const double velocity = velocities[slots[v] * dim + i];
+            const double velocity = velocities[slots[e] * dim + i];
             for (unsigned int j = 0; j < dim; ++j)
-              gradient[i][j] += velocity * gradients[v][j];
+              gradient[i][j] += velocity * gradients[e][j];
           }
       return gradient;
     }
@@ -180,16 +177,16 @@ namespace grainmpm
                         const double (&stress)[dim][dim],
                         double *forces) const
     {
-      const unsigned int   *slots = cache.slots.data() + p * nodes_per_particle;
-      const Tensor<1, dim> *gradients =
-        cache.shape_gradients.data() + p * nodes_per_particle;
-      for (unsigned int v = 0; v < nodes_per_particle; ++v)
+      const unsigned int   *slots     = cache.slots.data();
+      const Tensor<1, dim> *gradients = cache.shape_gradients.data();
+      const unsigned int    end       = cache.first_entry[p + 1];
+      for (unsigned int e = cache.first_entry[p]; e < end; ++e)
         for (unsigned int i = 0; i < dim; ++i)
           {
             double divergence = 0.;
             for (unsigned int j = 0; j < dim; ++j)
-              divergence += stress[i][j] * gradients[v][j];
-            forces[slots[v] * dim + i] -= divergence;
+              divergence += stress[i][j] * gradients[e][j];
+            forces[slots[e] * dim + i] -= divergence;
           }
     }
 

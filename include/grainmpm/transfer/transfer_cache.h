@@ -5,6 +5,7 @@
 #define grainmpm_transfer_transfer_cache_h
 
 #include <grainmpm/base/config.h>
+#include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
 
 #include <deal.II/base/tensor.h>
@@ -40,29 +41,46 @@ namespace grainmpm
 
   /**
    * Everything the particle-grid transfers of one step need that depends
-   * only on the particle positions at the start of the step, in flat
-   * arrays in the order in which `for (auto &particle : particle_handler)`
-   * visits the particles (see doc/theory.md): for each particle its
-   * 2^dim nodes, the Q1 shape values S_ip and gradients grad S_ip
-   * evaluated directly from the reference location (the cells are
-   * axis-aligned boxes), and its velocity field (the grain, or the common
-   * field when grains do not have their own fields). The slot of each
-   * (particle, node) pair is filled in by GrainFieldLayout::reinit().
+   * only on the particle positions (and, for cpGIMP, deformations) at the
+   * start of the step, in flat arrays in the order in which
+   * for_each_particle() visits the particles: for each particle the list of
+   * its (node, weight) entries, entries first_entry[p] to
+   * first_entry[p + 1] - 1, with the node, the shape value S_ip and its
+   * gradient grad S_ip, and the particle's velocity field (the grain, or
+   * the common field when grains do not have their own fields). The slot
+   * of each entry is filled in by GrainFieldLayout::reinit().
+   *
+   * The weights (see doc/theory.md):
+   * - linear: the Q1 hats of the 2^dim vertices of the particle's cell,
+   *   evaluated directly from the reference location (the cells are
+   *   axis-aligned boxes);
+   * - uGIMP and cpGIMP: per axis the hat N averaged over the particle's
+   *   interval [x - l, x + l] cut at the box faces,
+   *   S = (Phi(b) - Phi(a)) / (b - a) and dS/dx = (N(b) - N(a)) / (b - a)
+   *   with Phi the integral of N, multiplied over the axes. With l at most
+   *   half a cell a particle touches 2 or 3 nodes per axis; only the nodes
+   *   with a positive weight are listed.
    */
   template <int dim>
   class TransferCache
   {
   public:
-    static constexpr unsigned int nodes_per_particle = 1U << dim;
+    /** The most entries a particle can have (3 nodes per axis). */
+    static constexpr unsigned int max_nodes_per_particle = dim == 2 ? 9 : 27;
 
     /**
      * Compute the cache for the particles of @p particle_handler on
-     * @p grid. @p field_of_grain maps a grain to its velocity field.
+     * @p grid with the weights @p shape_functions. @p field_of_grain maps a
+     * grain to its velocity field. @p half_width is the half-width l of a
+     * particle's box in each direction at F = I (GIMP only; at most half a
+     * cell).
      */
     void
     reinit(const BackgroundGrid<dim>             &grid,
            const Particles::ParticleHandler<dim> &particle_handler,
-           const std::vector<unsigned int>       &field_of_grain);
+           const std::vector<unsigned int>       &field_of_grain,
+           const ShapeFunctions  shape_functions = ShapeFunctions::linear,
+           const Tensor<1, dim> &half_width      = Tensor<1, dim>());
 
     /** Number of particles. */
     std::size_t
@@ -71,16 +89,32 @@ namespace grainmpm
       return fields.size();
     }
 
-    /** Node of local vertex @p v of particle @p p. */
+    /**
+     * The most nodes a particle touches along one axis: 2 (linear) or 3
+     * (GIMP). Two nodes farther apart than this along some axis are never
+     * touched by one particle.
+     */
+    unsigned int
+    nodes_per_axis() const
+    {
+      return shape_functions == ShapeFunctions::linear ? 2 : 3;
+    }
+
+    /** First entry of each particle; first_entry[n_particles()] ends. */
+    std::vector<unsigned int> first_entry;
+    /** Node of each entry. */
     std::vector<unsigned int> nodes;
-    /** S_ip for the same pairs. */
+    /** S_ip of each entry. */
     std::vector<double> shape_values;
-    /** grad S_ip for the same pairs. */
+    /** grad S_ip of each entry. */
     std::vector<Tensor<1, dim>> shape_gradients;
     /** Velocity field of each particle. */
     std::vector<unsigned int> fields;
-    /** Slot of each (particle, vertex) pair; set by GrainFieldLayout. */
+    /** Slot of each entry; set by GrainFieldLayout. */
     std::vector<unsigned int> slots;
+
+  private:
+    ShapeFunctions shape_functions = ShapeFunctions::linear;
   };
 } // namespace grainmpm
 
