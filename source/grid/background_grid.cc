@@ -137,6 +137,9 @@ namespace grainmpm
           lattice_extent[d] = upper_index[d] - lattice_origin[d] + 1;
           n_lattice_points *= lattice_extent[d];
         }
+    for (unsigned int d = 0; d < dim; ++d)
+      lattice_strides[d] =
+        (d == 0 ? 1 : lattice_strides[d - 1] * lattice_extent[d - 1]);
     lattice_nodes.assign(n_lattice_points, numbers::invalid_unsigned_int);
     for (unsigned int node = 0; node < n_local_nodes; ++node)
       {

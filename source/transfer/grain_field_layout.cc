@@ -195,7 +195,7 @@ namespace grainmpm
         }
 
     // Pass 6: local position -> slot number.
-    for (std::size_t e = 0; e < cache.nodes.size(); ++e)
+    for (std::size_t e = 0; e < cache.n_entries(); ++e)
       {
         const unsigned int node = cache.nodes[e];
         unsigned int      &slot = cache.slots[e];

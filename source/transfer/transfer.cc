@@ -126,24 +126,22 @@ namespace grainmpm
         particle_handler,
         [&](const std::size_t p, const auto &particle)
           __attribute__((always_inline)) {
-            const auto         properties = particle->get_properties();
-            const double       mass       = properties[Layout::mass];
-            const unsigned int end        = cache.first_entry[p + 1];
-            for (unsigned int e = cache.first_entry[p]; e < end; ++e)
-              {
-                const unsigned int    slot     = cache.slots[e];
-                const double          shape    = cache.shape_values[e];
-                const Tensor<1, dim> &gradient = cache.shape_gradients[e];
-                if constexpr (full)
-                  mass_values[slot] += mass * shape;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    momentum[slot * dim + d] +=
-                      mass * shape * properties[Layout::velocity + d];
-                    if constexpr (full)
-                      gradient_sum[slot * dim + d] += mass * gradient[d];
-                  }
-              }
+            const auto   properties = particle->get_properties();
+            const double mass       = properties[Layout::mass];
+            cache.for_each_entry(p, [&](const unsigned int e) {
+              const unsigned int    slot     = cache.slots[e];
+              const double          shape    = cache.shape_values[e];
+              const Tensor<1, dim> &gradient = cache.shape_gradients[e];
+              if constexpr (full)
+                mass_values[slot] += mass * shape;
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  momentum[slot * dim + d] +=
+                    mass * shape * properties[Layout::velocity + d];
+                  if constexpr (full)
+                    gradient_sum[slot * dim + d] += mass * gradient[d];
+                }
+            });
           });
     };
     Assert((masses == nullptr) == (mass_gradients == nullptr),
@@ -199,24 +197,22 @@ namespace grainmpm
           const auto properties = particle->get_properties();
           if (grains[Layout::get_grain(properties)].rigid)
             return;
-          const unsigned int          end    = cache.first_entry[p + 1];
           const double                mass   = properties[Layout::mass];
           const double                volume = properties[Layout::volume];
           const SymmetricTensor<2, 3> stress = Layout::get_stress(properties);
-          for (unsigned int e = cache.first_entry[p]; e < end; ++e)
-            {
-              const unsigned int    slot     = cache.slots[e];
-              const double          shape    = cache.shape_values[e];
-              const Tensor<1, dim> &gradient = cache.shape_gradients[e];
-              for (unsigned int i = 0; i < dim; ++i)
-                {
-                  double divergence = 0.;
-                  for (unsigned int j = 0; j < dim; ++j)
-                    divergence += stress[i][j] * gradient[j];
-                  forces.local_element(slot * dim + i) +=
-                    -volume * divergence + mass * shape * gravity[i];
-                }
-            }
+          cache.for_each_entry(p, [&](const unsigned int e) {
+            const unsigned int    slot     = cache.slots[e];
+            const double          shape    = cache.shape_values[e];
+            const Tensor<1, dim> &gradient = cache.shape_gradients[e];
+            for (unsigned int i = 0; i < dim; ++i)
+              {
+                double divergence = 0.;
+                for (unsigned int j = 0; j < dim; ++j)
+                  divergence += stress[i][j] * gradient[j];
+                forces.local_element(slot * dim + i) +=
+                  -volume * divergence + mass * shape * gravity[i];
+              }
+          });
         });
     forces.compress(VectorOperation::add);
   }
@@ -346,21 +342,19 @@ namespace grainmpm
             // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC:
             // v_p = sum S v^new; x_p += dt sum_i S_ip v_i (v^L explicit,
             // v^theta implicit).
-            Tensor<1, dim>     increment, interpolated, moved;
-            const unsigned int end = cache.first_entry[p + 1];
-            for (unsigned int e = cache.first_entry[p]; e < end; ++e)
-              {
-                const unsigned int slot  = cache.slots[e];
-                const double       shape = cache.shape_values[e];
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    const double v_new = new_values[slot * dim + d];
-                    interpolated[d] += shape * v_new;
-                    moved[d] += shape * position_values[slot * dim + d];
-                    increment[d] +=
-                      shape * (v_new - reference_values[slot * dim + d]);
-                  }
-              }
+            Tensor<1, dim> increment, interpolated, moved;
+            cache.for_each_entry(p, [&](const unsigned int e) {
+              const unsigned int slot  = cache.slots[e];
+              const double       shape = cache.shape_values[e];
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  const double v_new = new_values[slot * dim + d];
+                  interpolated[d] += shape * v_new;
+                  moved[d] += shape * position_values[slot * dim + d];
+                  increment[d] +=
+                    shape * (v_new - reference_values[slot * dim + d]);
+                }
+            });
             const Tensor<1, dim> old_velocity =
               Layout::get_velocity(properties);
             new_velocity =

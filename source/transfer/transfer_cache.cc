@@ -50,7 +50,10 @@ namespace grainmpm
       {
         n                           = 0;
         const double inverse_length = 1. / (b - a);
-        for (int offset = -1; offset <= 2; ++offset)
+        // The nodes at offsets 0 and 1 always have weight; those at -1 and
+        // 2 only if the interval reaches over the cell's faces.
+        for (int offset = (a < 0. ? -1 : 0); offset <= (b > 1. ? 2 : 1);
+             ++offset)
           {
             const double value =
               (hat_integral(b - offset) - hat_integral(a - offset)) *
@@ -85,10 +88,16 @@ namespace grainmpm
     const unsigned int per_particle =
       shape_functions == ShapeFunctions::linear ? (1U << dim) :
                                                   max_nodes_per_particle;
+    // The arrays only grow (resizing them down to the entries used and up
+    // again every step would clear them every step).
     first_entry.resize(n + 1);
-    nodes.resize(n * per_particle);
-    shape_values.resize(n * per_particle);
-    shape_gradients.resize(n * per_particle);
+    if (nodes.size() < n * per_particle)
+      {
+        nodes.resize(n * per_particle);
+        shape_values.resize(n * per_particle);
+        shape_gradients.resize(n * per_particle);
+        slots.resize(n * per_particle);
+      }
     fields.resize(n);
 
     Tensor<1, dim> inverse_h;
@@ -113,8 +122,9 @@ namespace grainmpm
                 one_d_values[d][0] = 1. - xi[d];
                 one_d_values[d][1] = xi[d];
               }
-            first_entry[p] = entry;
-            for (unsigned int v = 0; v < per_particle; ++v, ++entry)
+            first_entry[p]                    = entry;
+            constexpr unsigned int n_vertices = 1U << dim;
+            for (unsigned int v = 0; v < n_vertices; ++v, ++entry)
               {
                 double         value = 1.;
                 Tensor<1, dim> gradient;
@@ -145,12 +155,20 @@ namespace grainmpm
         for (unsigned int d = 0; d < dim; ++d)
           initial_width[d] = std::min(0.5, half_width[d] * inverse_h[d]);
         const std::vector<unsigned int> &n_cells = grid.n_cells();
+        // The lattice index of the lower vertex of the cell of the last
+        // particle.
+        std::array<int, dim> cell_index;
+        unsigned int         last_cell = numbers::invalid_unsigned_int;
         for_each_particle(
           grid, particle_handler, [&](const auto &cell, const auto &particle) {
-            // The lattice index of the cell's lower vertex, and the
-            // particle's interval per axis in cell units, cut at the box.
-            const std::array<int, dim> cell_index = grid.node_lattice_index(
-              grid.cell_nodes(cell->active_cell_index())[0]);
+            if (cell->active_cell_index() != last_cell)
+              {
+                last_cell  = cell->active_cell_index();
+                cell_index = grid.node_lattice_index(
+                  grid.cell_nodes(cell->active_cell_index())[0]);
+              }
+            // The particle's interval per axis in cell units, cut at the
+            // box.
             const Point<dim> xi         = particle->get_reference_location();
             const auto       properties = particle->get_properties();
             Tensor<1, dim>   width      = initial_width;
@@ -165,8 +183,10 @@ namespace grainmpm
                   width[d] =
                     std::min(0.5, std::max(1e-6, width[d] * F[d].norm()));
               }
-            AxisWeights  axes[dim];
-            unsigned int n_axis[dim];
+            // Per axis the nodes with a positive weight: their values,
+            // derivatives and parts of the lattice position.
+            AxisWeights axes[dim];
+            std::size_t parts[dim][4];
             for (unsigned int d = 0; d < dim; ++d)
               {
                 const double a =
@@ -175,42 +195,49 @@ namespace grainmpm
                   std::min(xi[d] + width[d],
                            static_cast<double>(n_cells[d]) - cell_index[d]);
                 axes[d].compute(a, b);
-                n_axis[d] = axes[d].n;
-              }
-            first_entry[p]         = entry;
-            unsigned int n_entries = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              n_entries *= n_axis[d];
-            for (unsigned int k = 0; k < n_entries; ++k, ++entry)
-              {
-                std::array<int, dim> node_index;
-                unsigned int         axis_entry[dim];
-                unsigned int         rest = k;
-                for (unsigned int d = 0; d < dim; ++d)
+                for (unsigned int k = 0; k < axes[d].n; ++k)
                   {
-                    axis_entry[d] = rest % n_axis[d];
-                    rest /= n_axis[d];
-                    node_index[d] =
-                      cell_index[d] + axes[d].offsets[axis_entry[d]];
+                    axes[d].derivatives[k] *= inverse_h[d];
+                    parts[d][k] =
+                      grid.lattice_part(d, cell_index[d] + axes[d].offsets[k]);
                   }
-                double         value = 1.;
+              }
+            // Their tensor products, counting through the axes like an
+            // odometer.
+            first_entry[p]        = entry;
+            unsigned int at[dim]  = {};
+            bool         finished = false;
+            while (!finished)
+              {
+                double         value    = 1.;
+                std::size_t    position = 0;
                 Tensor<1, dim> gradient;
                 for (unsigned int d = 0; d < dim; ++d)
                   {
-                    value *= axes[d].values[axis_entry[d]];
-                    double derivative =
-                      axes[d].derivatives[axis_entry[d]] * inverse_h[d];
+                    value *= axes[d].values[at[d]];
+                    position += parts[d][at[d]];
+                    double derivative = axes[d].derivatives[at[d]];
                     for (unsigned int e = 0; e < dim; ++e)
                       if (e != d)
-                        derivative *= axes[e].values[axis_entry[e]];
+                        derivative *= axes[e].values[at[e]];
                     gradient[d] = derivative;
                   }
-                const unsigned int node = grid.node_at(node_index);
-                Assert(node != numbers::invalid_unsigned_int,
+                AssertIndexRange(entry, nodes.size());
+                nodes[entry] = grid.lattice_node(position);
+                Assert(nodes[entry] != numbers::invalid_unsigned_int,
                        ExcInternalError());
-                nodes[entry]           = node;
                 shape_values[entry]    = value;
                 shape_gradients[entry] = gradient;
+                ++entry;
+                finished = true;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (++at[d] < axes[d].n)
+                    {
+                      finished = false;
+                      break;
+                    }
+                  else
+                    at[d] = 0;
               }
             fields[p] =
               field_of_grain[MaterialPointLayout<dim>::get_grain(properties)];
@@ -219,10 +246,6 @@ namespace grainmpm
       }
     AssertDimension(p, n);
     first_entry[n] = entry;
-    nodes.resize(entry);
-    shape_values.resize(entry);
-    shape_gradients.resize(entry);
-    slots.resize(entry);
   }
 
 

@@ -124,9 +124,8 @@ test()
       {
         if (kernel == ShapeFunctions::ugimp && F == stretch)
           continue;
-        Particles::ParticleHandler<dim> particle_handler(grid.get_triangulation(),
-                                                         grid.get_mapping(),
-                                                         Layout::n_properties);
+        Particles::ParticleHandler<dim> particle_handler(
+          grid.get_triangulation(), grid.get_mapping(), Layout::n_properties);
         for (unsigned int i = 0; i < positions.size(); ++i)
           {
             const auto cell_and_reference =
@@ -163,8 +162,7 @@ test()
         }
         const auto weights = [&](const unsigned int i) {
           std::map<unsigned int, std::pair<double, Tensor<1, dim>>> w;
-          const unsigned int                                          p =
-            p_of_id[i];
+          const unsigned int p = p_of_id[i];
           for (unsigned int e = cache.first_entry[p];
                e < cache.first_entry[p + 1];
                ++e)
@@ -189,20 +187,19 @@ test()
                   {
                     double formula = 1.;
                     for (unsigned int d = 0; d < dim; ++d)
-                      formula *=
-                        closed_form(positions[i][d] -
-                                      grid.node_position(node)[d],
-                                    h[d],
-                                    width[d]);
+                      formula *= closed_form(positions[i][d] -
+                                               grid.node_position(node)[d],
+                                             h[d],
+                                             width[d]);
                     max_formula_error =
                       std::max(max_formula_error,
                                std::abs(value.first - formula));
                   }
               }
-            max_sum_error    = std::max(max_sum_error, std::abs(sum - 1.));
-            max_gradient_sum = std::max(max_gradient_sum,
-                                        gradient_sum.norm() *
-                                          grid.minimum_cell_size());
+            max_sum_error = std::max(max_sum_error, std::abs(sum - 1.));
+            max_gradient_sum =
+              std::max(max_gradient_sum,
+                       gradient_sum.norm() * grid.minimum_cell_size());
             if (i < n_interior)
               {
                 // Nodes per axis: 3 if the box reaches over a cell face
@@ -241,8 +238,8 @@ test()
                 difference_quotient[d] =
                   (plus.at(node).first - minus.at(node).first) / (2. * eps);
               }
-            max_error = std::max(max_error,
-                                 (difference_quotient - value.second).norm());
+            max_error =
+              std::max(max_error, (difference_quotient - value.second).norm());
             gradient_scale = std::max(gradient_scale, value.second.norm());
           }
 

@@ -125,6 +125,25 @@ namespace grainmpm
     unsigned int
     node_at(const std::array<int, dim> &index) const;
 
+    /**
+     * The local node at lattice index (i_0, .., i_{dim-1}) is
+     * lattice_node(sum_d lattice_part(d, i_d)), for indices of locally
+     * relevant nodes: the same as node_at() without the range checks, for
+     * the inner loops of the transfer.
+     */
+    std::size_t
+    lattice_part(const unsigned int d, const int index) const
+    {
+      return lattice_strides[d] * (index - lattice_origin[d]);
+    }
+
+    /** See lattice_part(). */
+    unsigned int
+    lattice_node(const std::size_t position) const
+    {
+      return lattice_nodes[position];
+    }
+
     /** Number of cells in each direction. */
     const std::vector<unsigned int> &
     n_cells() const;
@@ -183,9 +202,10 @@ namespace grainmpm
      * index range holding them (origin and extent) and the local node at
      * each lattice point of it (numbers::invalid_unsigned_int if none).
      */
-    std::array<int, dim>      lattice_origin;
-    std::array<int, dim>      lattice_extent;
-    std::vector<unsigned int> lattice_nodes;
+    std::array<int, dim>         lattice_origin;
+    std::array<int, dim>         lattice_extent;
+    std::array<std::size_t, dim> lattice_strides;
+    std::vector<unsigned int>    lattice_nodes;
   };
 
 

@@ -155,15 +155,15 @@ namespace grainmpm
     {
       const unsigned int   *slots     = cache.slots.data();
       const Tensor<1, dim> *gradients = cache.shape_gradients.data();
-      const unsigned int    end       = cache.first_entry[p + 1];
       Tensor<2, dim>        gradient;
-      for (unsigned int e = cache.first_entry[p]; e < end; ++e)
+      cache.for_each_entry(p, [&](const unsigned int e) {
         for (unsigned int i = 0; i < dim; ++i)
           {
             const double velocity = velocities[slots[e] * dim + i];
             for (unsigned int j = 0; j < dim; ++j)
               gradient[i][j] += velocity * gradients[e][j];
           }
+      });
       return gradient;
     }
 
@@ -179,8 +179,7 @@ namespace grainmpm
     {
       const unsigned int   *slots     = cache.slots.data();
       const Tensor<1, dim> *gradients = cache.shape_gradients.data();
-      const unsigned int    end       = cache.first_entry[p + 1];
-      for (unsigned int e = cache.first_entry[p]; e < end; ++e)
+      cache.for_each_entry(p, [&](const unsigned int e) {
         for (unsigned int i = 0; i < dim; ++i)
           {
             double divergence = 0.;
@@ -188,6 +187,7 @@ namespace grainmpm
               divergence += stress[i][j] * gradients[e][j];
             forces[slots[e] * dim + i] -= divergence;
           }
+      });
     }
 
     /**
