@@ -414,6 +414,20 @@ namespace grainmpm
                       "Coulomb friction coefficient between grains, used by "
                       "the 'Coulomb friction' model. Dimensionless.",
                       Patterns::Double(0.));
+    prm.add_parameter(
+      "Gap check",
+      gap_check,
+      "Whether contact (between grains, with rigid grains and with the "
+      "walls) acts only where the surfaces meet within the step. At each "
+      "node the surface of every grain is located along the contact normal "
+      "from the volume its material points give the node (sum_p V_p S_ip) "
+      "against the node's support, as for a flat surface; a grain may then "
+      "approach its partner by the gap between the surfaces in one step, "
+      "and only the faster part of the approach is removed. 'false': every "
+      "approach at a node where two grains have mass is removed (contact "
+      "about one cell early, and grains rotating next to a surface are "
+      "pushed off it).",
+      Patterns::Bool());
     prm.leave_subsection();
   }
 

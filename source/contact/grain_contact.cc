@@ -91,6 +91,21 @@ namespace grainmpm
     }
 
     /**
+     * The position s (in cells along the normal, from the node) of a flat
+     * surface whose material fills the fraction @p phi of the node's
+     * support: phi = Phi(s), Phi the integral of the hat from -1 to s.
+     */
+    inline double
+    surface_position(double phi)
+    {
+      phi = std::min(1., std::max(0., phi));
+      return phi <= 0.5 ? -1. + std::sqrt(2. * phi) :
+                          1. - std::sqrt(2. * (1. - phi));
+    }
+
+
+
+    /**
      * The fields of one contact node copied from the slot vectors into
      * contiguous arrays, for the contact law at the node, and the corrected
      * velocities copied back.
@@ -201,6 +216,89 @@ namespace grainmpm
 
   template <int dim>
   void
+  GrainContact<dim>::compute_gaps(const GrainFieldLayout<dim> &layout,
+                                  const VectorType            &volumes,
+                                  const double                 dt)
+  {
+    // The support of a node, int S_i dx = prod_d h_d, halved for every box
+    // face the node lies on.
+    double support = 1.;
+    for (unsigned int d = 0; d < dim; ++d)
+      support *= grid.cell_size()[d];
+    gap_dt = dt;
+    slot_fills.resize(layout.n_slots());
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      {
+        const unsigned int faces = grid.node_faces(layout.node(s));
+        slot_fills[s]            = volumes.local_element(s) *
+                        (1U << __builtin_popcount(faces)) / support;
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GrainContact<dim>::node_allowed_approach(const unsigned int,
+                                           const unsigned int    begin,
+                                           const unsigned int    n,
+                                           const double         *masses,
+                                           const bool           *rigid,
+                                           const Tensor<1, dim> *normals,
+                                           double               *allowed) const
+  {
+    const Tensor<1, dim> &h               = grid.cell_size();
+    double                deformable_mass = 0., fill_sum = 0.;
+    bool                  rigid_partner = false;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        fill_sum += slot_fills[begin + k];
+        if (rigid[k])
+          rigid_partner = true;
+        else
+          deformable_mass += masses[k];
+      }
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        allowed[k] = 0.;
+        if (rigid[k] || normals[k].norm_square() == 0. ||
+            !(deformable_mass > 0.))
+          continue;
+        double h_normal = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          h_normal += (h[d] * normals[k][d]) * (h[d] * normals[k][d]);
+        const double fill = slot_fills[begin + k];
+        const double gap =
+          std::sqrt(h_normal) *
+          (surface_position(1. - (fill_sum - fill)) - surface_position(fill));
+        if (gap > 0.)
+          allowed[k] =
+            (rigid_partner ? 1. :
+                             (deformable_mass - masses[k]) / deformable_mass) *
+            gap / gap_dt;
+      }
+  }
+
+
+
+  template <int dim>
+  double
+  GrainContact<dim>::wall_allowed_approach(const unsigned int slot,
+                                           const unsigned int face) const
+  {
+    if (!uses_gaps())
+      return 0.;
+    // The in-box half of the support along the wall normal: a flat surface
+    // filling the fraction phi of it lies 1 - sqrt(phi) cells from the wall.
+    const double gap = grid.cell_size()[face / 2] *
+                       (1. - std::sqrt(std::min(1., slot_fills[slot])));
+    return gap / gap_dt;
+  }
+
+
+
+  template <int dim>
+  void
   GrainContact<dim>::prescribe_rigid_velocities(
     const GrainFieldLayout<dim> &layout,
     VectorType                  &velocities,
@@ -229,16 +327,18 @@ namespace grainmpm
   GrainContact<dim>::classify(const Tensor<1, dim> &relative,
                               const Tensor<1, dim> &normal,
                               const double          mu,
-                              Tensor<1, dim>       &slip_direction)
+                              Tensor<1, dim>       &slip_direction,
+                              const double          allowed)
   {
-    // D of eq. (5): approaching iff relative . n > 0; then stick if
-    // mu D >= |v_t| (mu' = min(mu, C/D) = C/D removes all relative
-    // tangential velocity), else slip by mu D.
-    slip_direction        = Tensor<1, dim>();
-    const double approach = relative * normal;
+    // D of eq. (5): approaching iff relative . n > 0 (beyond the approach
+    // the gap allows); then stick if mu D >= |v_t| (mu' = min(mu, C/D) =
+    // C/D removes all relative tangential velocity), else slip by mu D.
+    slip_direction            = Tensor<1, dim>();
+    const double normal_speed = relative * normal;
+    const double approach     = normal_speed - allowed;
     if (!(approach > 0.))
       return ContactState::free;
-    const Tensor<1, dim> tangential = relative - approach * normal;
+    const Tensor<1, dim> tangential = relative - normal_speed * normal;
     const double         slip       = tangential.norm();
     if (mu > 0. && mu * approach >= slip)
       return ContactState::sticking;
@@ -256,13 +356,14 @@ namespace grainmpm
                                  const double          mu,
                                  const Tensor<1, dim> &slip_direction,
                                  const Tensor<1, dim> &reference,
-                                 Tensor<1, dim>       &velocity)
+                                 Tensor<1, dim>       &velocity,
+                                 const double          allowed)
   {
     if (state == ContactState::sticking)
-      velocity = reference;
+      velocity = reference + allowed * normal;
     else if (state == ContactState::sliding)
       {
-        const double approach = (velocity - reference) * normal;
+        const double approach = (velocity - reference) * normal - allowed;
         velocity -= approach * normal + (mu * approach) * slip_direction;
       }
   }
@@ -281,7 +382,8 @@ namespace grainmpm
                                   const double          mass_threshold,
                                   ContactState         *states,
                                   Tensor<1, dim>       *slip_directions,
-                                  Tensor<1, dim>       *reference_out)
+                                  Tensor<1, dim>       *reference_out,
+                                  const double         *allowed)
   {
     if (states != nullptr)
       for (unsigned int k = 0; k < n_fields; ++k)
@@ -328,12 +430,18 @@ namespace grainmpm
               state = classify(velocities[k] - reference,
                                normals[k],
                                mu,
-                               slip_direction);
+                               slip_direction,
+                               allowed != nullptr ? allowed[k] : 0.);
               if (state == ContactState::free)
                 continue; // separating: free
             }
-          apply_state(
-            state, normals[k], mu, slip_direction, reference, velocities[k]);
+          apply_state(state,
+                      normals[k],
+                      mu,
+                      slip_direction,
+                      reference,
+                      velocities[k],
+                      allowed != nullptr ? allowed[k] : 0.);
           if (states != nullptr)
             {
               states[k]          = state;
@@ -386,7 +494,8 @@ namespace grainmpm
                                          const Reference       reference_mode,
                                          const Tensor<1, dim> &frozen_reference,
                                          const double    friction_coefficient,
-                                         Tensor<1, dim> *velocities)
+                                         Tensor<1, dim> *velocities,
+                                         const double   *allowed)
   {
     Tensor<1, dim> reference, momentum_before;
     double         total_mass;
@@ -412,7 +521,8 @@ namespace grainmpm
                   friction_coefficient,
                   slip_directions[k],
                   reference,
-                  velocities[k]);
+                  velocities[k],
+                  allowed != nullptr ? allowed[k] : 0.);
     // Three or more deformable fields: one momentum-restoring shift. The
     // map stays linear in the velocities; alternating it with the frozen
     // projection until the shift vanishes converges slowly without
@@ -438,6 +548,7 @@ namespace grainmpm
     NodeFields<dim>             fields(layout);
     std::vector<Tensor<1, dim>> node_slips;
     std::vector<ContactState>   node_states;
+    std::vector<double>         node_allowed;
     unsigned int                n_corrected = 0;
     for (const unsigned int node : layout.contact_nodes())
       {
@@ -446,6 +557,15 @@ namespace grainmpm
         const unsigned int n = fields.n;
         node_states.resize(n);
         node_slips.resize(n);
+        node_allowed.assign(n, 0.);
+        if (uses_gaps())
+          node_allowed_approach(node,
+                                fields.begin,
+                                n,
+                                fields.masses.data(),
+                                fields.rigid.get(),
+                                fields.normals.data(),
+                                node_allowed.data());
         Tensor<1, dim> reference;
         const bool     corrected =
           project_node(n,
@@ -458,13 +578,15 @@ namespace grainmpm
                        mass_threshold,
                        status != nullptr ? node_states.data() : nullptr,
                        node_slips.data(),
-                       &reference);
+                       &reference,
+                       node_allowed.data());
         if (status != nullptr)
           for (unsigned int k = 0; k < n; ++k)
             {
               status->slot_state[fields.begin + k]      = node_states[k];
               status->slip_directions[fields.begin + k] = node_slips[k];
               status->references[fields.begin + k]      = reference;
+              status->allowed[fields.begin + k]         = node_allowed[k];
             }
         if (corrected)
           {
@@ -484,7 +606,8 @@ namespace grainmpm
   GrainContact<dim>::classify_wall(const BoundaryCondition &condition,
                                    const Tensor<1, dim>    &normal,
                                    const Tensor<1, dim>    &velocity,
-                                   Tensor<1, dim>          &slip_direction)
+                                   Tensor<1, dim>          &slip_direction,
+                                   const double             allowed)
   {
     slip_direction = Tensor<1, dim>();
     switch (condition.type)
@@ -500,7 +623,8 @@ namespace grainmpm
           return classify(velocity,
                           normal,
                           wall_friction(condition),
-                          slip_direction);
+                          slip_direction,
+                          allowed);
       }
     return ContactState::free;
   }
@@ -511,17 +635,20 @@ namespace grainmpm
   void
   GrainContact<dim>::apply_wall(const BoundaryCondition &condition,
                                 const Tensor<1, dim>    &normal,
-                                Tensor<1, dim>          &velocity)
+                                Tensor<1, dim>          &velocity,
+                                const double             allowed)
   {
     Tensor<1, dim>     slip_direction;
     const ContactState state =
-      classify_wall(condition, normal, velocity, slip_direction);
+      classify_wall(condition, normal, velocity, slip_direction, allowed);
+    // (A no-slip wall sticks whatever the gap.)
     apply_state(state,
                 normal,
                 wall_friction(condition),
                 slip_direction,
                 Tensor<1, dim>(),
-                velocity);
+                velocity,
+                condition.type == BoundaryType::no_slip ? 0. : allowed);
   }
 
 
@@ -545,7 +672,8 @@ namespace grainmpm
               if (faces & (1U << face))
                 apply_wall(grid.boundary_condition(face),
                            face_normal(face),
-                           velocity);
+                           velocity,
+                           wall_allowed_approach(s, face));
             set_slot_vector<dim>(velocity, velocities, s);
           }
       }
@@ -562,6 +690,7 @@ namespace grainmpm
     status.slot_state.assign(n_slots, ContactState::free);
     status.slip_directions.assign(n_slots, Tensor<1, dim>());
     status.references.assign(n_slots, Tensor<1, dim>());
+    status.allowed.assign(n_slots, 0.);
     status.wall_slots.clear();
     status.wall_faces.clear();
     for (const unsigned int node : grid.boundary_nodes())
@@ -582,6 +711,7 @@ namespace grainmpm
     status.wall_state.assign(status.wall_slots.size(), ContactState::free);
     status.wall_slip_directions.assign(status.wall_slots.size(),
                                        Tensor<1, dim>());
+    status.wall_allowed.assign(status.wall_slots.size(), 0.);
     status.any_active = false;
   }
 
@@ -612,16 +742,22 @@ namespace grainmpm
           grid.boundary_condition(status.wall_faces[w]);
         const Tensor<1, dim> normal   = face_normal(status.wall_faces[w]);
         Tensor<1, dim>       velocity = get_slot_vector<dim>(projected, s);
-        status.wall_state[w]          = classify_wall(condition,
+        status.wall_allowed[w] =
+          condition.type == BoundaryType::no_slip ?
+            0. :
+            wall_allowed_approach(s, status.wall_faces[w]);
+        status.wall_state[w] = classify_wall(condition,
                                              normal,
                                              velocity,
-                                             status.wall_slip_directions[w]);
+                                             status.wall_slip_directions[w],
+                                             status.wall_allowed[w]);
         apply_state(status.wall_state[w],
                     normal,
                     wall_friction(condition),
                     status.wall_slip_directions[w],
                     Tensor<1, dim>(),
-                    velocity);
+                    velocity,
+                    status.wall_allowed[w]);
         set_slot_vector<dim>(velocity, projected, s);
       }
     const auto active = [](const ContactState state) {
@@ -672,7 +808,10 @@ namespace grainmpm
                             reference,
                             status.references[begin],
                             mu,
-                            fields.velocities.data());
+                            fields.velocities.data(),
+                            reference == Reference::zero ?
+                              nullptr :
+                              status.allowed.data() + begin);
         fields.scatter(velocities);
       }
 
@@ -681,13 +820,14 @@ namespace grainmpm
         {
           const unsigned int s        = status.wall_slots[w];
           Tensor<1, dim>     velocity = get_slot_vector<dim>(velocities, s);
-          apply_state(status.wall_state[w],
-                      face_normal(status.wall_faces[w]),
-                      wall_friction(
-                        grid.boundary_condition(status.wall_faces[w])),
-                      status.wall_slip_directions[w],
-                      Tensor<1, dim>(),
-                      velocity);
+          apply_state(
+            status.wall_state[w],
+            face_normal(status.wall_faces[w]),
+            wall_friction(grid.boundary_condition(status.wall_faces[w])),
+            status.wall_slip_directions[w],
+            Tensor<1, dim>(),
+            velocity,
+            reference == Reference::zero ? 0. : status.wall_allowed[w]);
           set_slot_vector<dim>(velocity, velocities, s);
         }
     return n_active;

@@ -28,7 +28,7 @@ namespace grainmpm
     StepStatistics statistics;
 
     // Everything that depends only on the positions at t^n, once per step.
-    begin_step(transfer, contact, particle_handler, time, state);
+    begin_step(transfer, contact, particle_handler, time, dt, state);
     const GrainFieldLayout<dim> &layout = transfer.get_layout();
 
     copy_slot_vector(state.velocities_p2g, velocities_old);

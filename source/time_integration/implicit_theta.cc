@@ -50,7 +50,7 @@ namespace grainmpm
   {
     // Frozen at t^n: shape functions, slots, masses, normals; v^n with
     // contact and walls.
-    begin_step(transfer, contact, particle_handler, time, state);
+    begin_step(transfer, contact, particle_handler, time, dt, state);
     const GrainFieldLayout<dim> &layout = transfer.get_layout();
     copy_slot_vector(state.velocities_p2g, velocities_old);
     contact.apply_contact(layout,

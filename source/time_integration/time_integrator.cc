@@ -26,9 +26,10 @@ namespace grainmpm
   template <int dim>
   void
   begin_step(Transfer<dim>                   &transfer,
-             const GrainContact<dim>         &contact,
+             GrainContact<dim>               &contact,
              Particles::ParticleHandler<dim> &particle_handler,
              const double                     time,
+             const double                     dt,
              GridState<dim>                  &state)
   {
     transfer.reinit(particle_handler);
@@ -37,12 +38,15 @@ namespace grainmpm
     transfer.particles_to_grid(particle_handler,
                                &state.masses,
                                state.momenta,
-                               &state.mass_gradients);
+                               &state.mass_gradients,
+                               contact.uses_gaps() ? &state.volumes : nullptr);
     transfer.velocities_from_momenta(state.masses,
                                      state.momenta,
                                      state.velocities_p2g);
     contact.prescribe_rigid_velocities(layout, state.velocities_p2g, time);
     contact.compute_normals(layout, state.mass_gradients, state.normals);
+    if (contact.uses_gaps())
+      contact.compute_gaps(layout, state.volumes, dt);
   }
 
 
@@ -57,14 +61,16 @@ namespace grainmpm
     const std::vector<std::unique_ptr<ConstitutiveModel<3>>> &);
   template void
   begin_step<2>(Transfer<2> &,
-                const GrainContact<2> &,
+                GrainContact<2> &,
                 Particles::ParticleHandler<2> &,
+                const double,
                 const double,
                 GridState<2> &);
   template void
   begin_step<3>(Transfer<3> &,
-                const GrainContact<3> &,
+                GrainContact<3> &,
                 Particles::ParticleHandler<3> &,
+                const double,
                 const double,
                 GridState<3> &);
 } // namespace grainmpm

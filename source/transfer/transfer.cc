@@ -106,7 +106,8 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler,
     VectorType                            *masses,
     VectorType                            &momenta,
-    VectorType                            *mass_gradients) const
+    VectorType                            *mass_gradients,
+    VectorType                            *volumes) const
   {
     using Layout = MaterialPointLayout<dim>;
     if (masses != nullptr)
@@ -114,26 +115,34 @@ namespace grainmpm
     layout.reinit_vector(momenta, dim);
     if (mass_gradients != nullptr)
       layout.reinit_vector(*mass_gradients, dim);
+    if (volumes != nullptr)
+      layout.reinit_vector(*volumes, 1);
 
-    // The loop with or without masses and mass gradients (a compile-time
-    // choice: a test in the inner loop costs 10 % of the transfer).
-    const auto scatter = [&](auto with_masses) {
+    // The loop with or without masses and mass gradients, and with or
+    // without volumes (compile-time choices: a test in the inner loop costs
+    // 10 % of the transfer).
+    const auto scatter = [&](auto with_masses, auto with_volumes) {
       constexpr bool full         = decltype(with_masses)::value;
+      constexpr bool add_volumes  = decltype(with_volumes)::value;
       double *const  mass_values  = full ? masses->begin() : nullptr;
       double *const  momentum     = momenta.begin();
       double *const  gradient_sum = full ? mass_gradients->begin() : nullptr;
+      double *const  volume_sum   = add_volumes ? volumes->begin() : nullptr;
       for_each_particle(
         particle_handler,
         [&](const std::size_t p, const auto &particle)
           __attribute__((always_inline)) {
             const auto   properties = particle->get_properties();
             const double mass       = properties[Layout::mass];
+            const double volume     = properties[Layout::volume];
             cache.for_each_entry(p, [&](const unsigned int e) {
               const unsigned int    slot     = cache.slots[e];
               const double          shape    = cache.shape_values[e];
               const Tensor<1, dim> &gradient = cache.shape_gradients[e];
               if constexpr (full)
                 mass_values[slot] += mass * shape;
+              if constexpr (add_volumes)
+                volume_sum[slot] += volume * shape;
               for (unsigned int d = 0; d < dim; ++d)
                 {
                   momentum[slot * dim + d] +=
@@ -146,16 +155,22 @@ namespace grainmpm
     };
     Assert((masses == nullptr) == (mass_gradients == nullptr),
            ExcMessage("Masses and mass gradients go together."));
-    if (masses != nullptr)
-      scatter(std::true_type());
+    Assert(volumes == nullptr || masses != nullptr,
+           ExcMessage("Volumes come with masses."));
+    if (volumes != nullptr)
+      scatter(std::true_type(), std::true_type());
+    else if (masses != nullptr)
+      scatter(std::true_type(), std::false_type());
     else
-      scatter(std::false_type());
+      scatter(std::false_type(), std::false_type());
     // Sums at ghost slots go to their owners.
     if (masses != nullptr)
       masses->compress(VectorOperation::add);
     momenta.compress(VectorOperation::add);
     if (mass_gradients != nullptr)
       mass_gradients->compress(VectorOperation::add);
+    if (volumes != nullptr)
+      volumes->compress(VectorOperation::add);
   }
 
 

@@ -171,6 +171,7 @@ namespace grainmpm
     std::string  model_text           = "frictionless";
     ContactModel model                = ContactModel::frictionless;
     double       friction_coefficient = 0.;
+    bool         gap_check            = false;
 
     void
     declare(ParameterHandler &prm);

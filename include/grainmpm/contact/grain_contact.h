@@ -46,12 +46,15 @@ namespace grainmpm
     std::vector<ContactState>   slot_state;
     std::vector<Tensor<1, dim>> slip_directions;
     std::vector<Tensor<1, dim>> references;
+    /** The approach speed the gap allows per owned slot (gap check). */
+    std::vector<double> allowed;
 
     /** Wall entries: (slot, face) of deformable slots at closed faces. */
     std::vector<unsigned int>   wall_slots;
     std::vector<unsigned char>  wall_faces;
     std::vector<ContactState>   wall_state;
     std::vector<Tensor<1, dim>> wall_slip_directions;
+    std::vector<double>         wall_allowed;
 
     /** Whether any slot or wall entry is not free. */
     bool any_active = false;
@@ -83,6 +86,21 @@ namespace grainmpm
    * decides again, so no field is left approaching; with frozen states
    * (implicit), each pass applies the same states, so every constrained
    * field satisfies its constraint.
+   *
+   * With `Contact/Gap check`, field g may approach its partner by the gap
+   * between their surfaces in one step: the approach D is compared with
+   * the allowed approach speed a_g = (m_rest / m) gap / dt (a_g = gap / dt
+   * with a rigid partner or a wall; m_rest the mass of the node's other
+   * deformable fields, m of all), and only D - a_g is removed (the
+   * friction bound is mu (D - a_g)). The shares m_rest / m make the two
+   * corrections of a two-field node equal and opposite, so momentum stays
+   * exact. The gap comes from the fill fractions phi_g = sum_p V_p S_ip /
+   * V_i of the node's support V_i (cut at the box faces): a flat surface
+   * filling phi of the support lies at s = Phi^{-1}(phi) cells along the
+   * normal (Phi the integral of the hat), so gap = h_n (Phi^{-1}(1 -
+   * phi_rest) - Phi^{-1}(phi_g)), h_n the cell size along the normal; a
+   * wall gives gap = h (1 - sqrt(phi_g)). Two flat blocks in contact have
+   * phi_a + phi_b = 1, gap 0.
    */
   template <int dim>
   class GrainContact
@@ -122,6 +140,23 @@ namespace grainmpm
     compute_normals(const GrainFieldLayout<dim> &layout,
                     const VectorType            &mass_gradients,
                     VectorType                  &normals) const;
+
+    /** Whether the contact law checks the gap (`Contact/Gap check`). */
+    bool
+    uses_gaps() const
+    {
+      return parameters.gap_check;
+    }
+
+    /**
+     * The fill fractions of the owned slots of @p layout from the slot
+     * volumes @p volumes (sum_p V_p S_ip), for a step of length @p dt: the
+     * data of the gap check until the next call.
+     */
+    void
+    compute_gaps(const GrainFieldLayout<dim> &layout,
+                 const VectorType            &volumes,
+                 const double                 dt);
 
     /** Set the slots of rigid fields to their velocity at @p time. */
     void
@@ -228,7 +263,8 @@ namespace grainmpm
                  const double          mass_threshold  = 0.,
                  ContactState         *states          = nullptr,
                  Tensor<1, dim>       *slip_directions = nullptr,
-                 Tensor<1, dim>       *reference       = nullptr);
+                 Tensor<1, dim>       *reference       = nullptr,
+                 const double         *allowed         = nullptr);
 
     /**
      * The contact law at one node with the states @p states and slip
@@ -247,23 +283,26 @@ namespace grainmpm
                         const Reference       reference,
                         const Tensor<1, dim> &frozen_reference,
                         const double          friction_coefficient,
-                        Tensor<1, dim>       *velocities);
+                        Tensor<1, dim>       *velocities,
+                        const double         *allowed = nullptr);
 
     /**
      * The state of a velocity @p relative to its partner (or wall) with
      * the normal @p normal (pointing into the partner) and friction
-     * coefficient @p mu: free if not approaching, sticking if
-     * mu D >= |v_t|, else sliding; sets the slip direction of a sliding
-     * state with friction, zero otherwise.
+     * coefficient @p mu: with D the approach speed beyond @p allowed,
+     * free if D <= 0, sticking if mu D >= |v_t|, else sliding; sets the
+     * slip direction of a sliding state with friction, zero otherwise.
      */
     static ContactState
     classify(const Tensor<1, dim> &relative,
              const Tensor<1, dim> &normal,
              const double          mu,
-             Tensor<1, dim>       &slip_direction);
+             Tensor<1, dim>       &slip_direction,
+             const double          allowed = 0.);
 
     /**
-     * Apply @p state to @p velocity with partner velocity @p reference.
+     * Apply @p state to @p velocity with partner velocity @p reference,
+     * leaving the approach speed @p allowed.
      */
     static void
     apply_state(const ContactState    state,
@@ -271,7 +310,8 @@ namespace grainmpm
                 const double          mu,
                 const Tensor<1, dim> &slip_direction,
                 const Tensor<1, dim> &reference,
-                Tensor<1, dim>       &velocity);
+                Tensor<1, dim>       &velocity,
+                const double          allowed = 0.);
 
     /**
      * The state of a wall with @p condition and outward normal @p normal
@@ -281,7 +321,8 @@ namespace grainmpm
     classify_wall(const BoundaryCondition &condition,
                   const Tensor<1, dim>    &normal,
                   const Tensor<1, dim>    &velocity,
-                  Tensor<1, dim>          &slip_direction);
+                  Tensor<1, dim>          &slip_direction,
+                  const double             allowed = 0.);
 
     /**
      * The unilateral wall condition with outward wall normal @p normal
@@ -291,7 +332,8 @@ namespace grainmpm
     static void
     apply_wall(const BoundaryCondition &condition,
                const Tensor<1, dim>    &normal,
-               Tensor<1, dim>          &velocity);
+               Tensor<1, dim>          &velocity,
+               const double             allowed = 0.);
 
     /** Friction coefficient of a wall with @p condition. */
     static double
@@ -312,6 +354,25 @@ namespace grainmpm
     }
 
   private:
+    /**
+     * The approach speeds the gaps allow the fields of @p node (slots
+     * @p begin.. of @p n fields with @p masses, @p rigid and @p normals)
+     * into @p allowed.
+     */
+    void
+    node_allowed_approach(const unsigned int    node,
+                          const unsigned int    begin,
+                          const unsigned int    n,
+                          const double         *masses,
+                          const bool           *rigid,
+                          const Tensor<1, dim> *normals,
+                          double               *allowed) const;
+
+    /** The approach speed the gap allows slot @p slot at box face @p face. */
+    double
+    wall_allowed_approach(const unsigned int slot,
+                          const unsigned int face) const;
+
     /** The friction coefficient of the contact model (0 without). */
     double
     friction_coefficient() const
@@ -326,6 +387,10 @@ namespace grainmpm
     const std::vector<GrainInfo<dim>> &grains;
     const std::vector<bool>           &field_is_rigid;
     const bool                         has_rigid_fields;
+
+    /** Gap check: fill fraction per owned slot, and the step length. */
+    std::vector<double> slot_fills;
+    double              gap_dt = 0.;
   };
 } // namespace grainmpm
 

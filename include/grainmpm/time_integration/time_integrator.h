@@ -43,6 +43,8 @@ namespace grainmpm
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
     VectorType masses;
+    /** Volumes sum_p V_p S_ip per slot (for the gap check of contact). */
+    VectorType volumes;
     VectorType momenta;
     VectorType mass_gradients;
     VectorType normals;
@@ -57,17 +59,19 @@ namespace grainmpm
 
 
   /**
-   * The start of a step shared by both schemes, at the positions at
-   * @p time: shape functions and slots (@p transfer), particle to grid of
-   * mass, momentum and mass gradient, v^n = p / m with the rigid slots at
-   * their prescribed velocity, and the contact normals (@p contact).
+   * The start of a step of length @p dt shared by both schemes, at the
+   * positions at @p time: shape functions and slots (@p transfer),
+   * particle to grid of mass, volume, momentum and mass gradient, v^n =
+   * p / m with the rigid slots at their prescribed velocity, and the
+   * contact normals and gaps (@p contact).
    */
   template <int dim>
   void
   begin_step(Transfer<dim>                   &transfer,
-             const GrainContact<dim>         &contact,
+             GrainContact<dim>               &contact,
              Particles::ParticleHandler<dim> &particle_handler,
              const double                     time,
+             const double                     dt,
              GridState<dim>                  &state);
 
 

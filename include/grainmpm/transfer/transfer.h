@@ -122,13 +122,15 @@ namespace grainmpm
     /**
      * Particle to grid: momenta sum_p m_p v_p S_ip and, if given (both or
      * neither), masses sum_p m_p S_ip and mass gradients
-     * sum_p m_p grad S_ip per slot, completed on the owners.
+     * sum_p m_p grad S_ip per slot, and (with them, if given) the volumes
+     * sum_p V_p S_ip, completed on the owners.
      */
     void
     particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
                       VectorType                            *masses,
                       VectorType                            &momenta,
-                      VectorType *mass_gradients) const;
+                      VectorType                            *mass_gradients,
+                      VectorType *volumes = nullptr) const;
 
     /** v = p / m on owned slots with mass, zero elsewhere. */
     void
