@@ -86,6 +86,32 @@ namespace grainmpm::benchmarks
       grains = GrainGenerator<2>(parameters).generate(*grid, *particle_handler);
     }
 
+    /**
+     * Move the points by a quarter of their spacing in each direction: off
+     * the regular arrangement, whose GIMP boxes tile the cells exactly, one
+     * point per cell and axis touches 3 nodes along it, as on time average
+     * in a flow (2 + 1 / points per direction nodes per axis).
+     */
+    void
+    move_off_arrangement()
+    {
+      const Tensor<1, 2> &h = grid->cell_size();
+      const double        fraction =
+        0.25 / parameters.material_points.particles_per_cell;
+      for (auto &particle : *particle_handler)
+        {
+          Point<2> x         = particle.get_location();
+          Point<2> reference = particle.get_reference_location();
+          for (unsigned int d = 0; d < 2; ++d)
+            {
+              x[d] += fraction * h[d];
+              reference[d] += fraction;
+            }
+          particle.set_location(x);
+          particle.set_reference_location(reference);
+        }
+    }
+
     Parameters<2>                                      parameters;
     std::unique_ptr<BackgroundGrid<2>>                 grid;
     std::unique_ptr<Particles::ParticleHandler<2>>     particle_handler;

@@ -49,22 +49,7 @@ main(int argc, char *argv[])
                               block.grains,
                               block.materials);
 
-  // Move the points by a quarter of their spacing in each direction: off
-  // the regular arrangement, whose GIMP boxes tile the cells exactly, one
-  // point per cell and axis touches 3 nodes along it, as on time average
-  // in a flow (2 + 1 / points per direction nodes per axis).
-  {
-    const double shift = 0.25 / n_cells / per_dir;
-    for (auto &particle : *block.particle_handler)
-      {
-        Point<2> x = particle.get_location();
-        x[0] += shift, x[1] += shift;
-        particle.set_location(x);
-        Point<2> reference = particle.get_reference_location();
-        reference[0] += shift * n_cells, reference[1] += shift * n_cells;
-        particle.set_reference_location(reference);
-      }
-  }
+  block.move_off_arrangement();
   const double n_particles = particle_handler.n_global_particles();
   stepper.advance(particle_handler, 0., dt); // warm-up: allocations
   unsigned int n_sorted = 0;

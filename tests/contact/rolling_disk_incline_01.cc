@@ -28,17 +28,17 @@ using namespace grainmpm;
 void
 roll(const unsigned int n_cells, const double mu, const bool gap_check)
 {
-  const double       h       = 1. / n_cells;
-  const double       R       = 0.1;
-  const double       angle   = 20. * numbers::PI / 180.;
-  const double       g       = 1.;
+  const double       h     = 1. / n_cells;
+  const double       R     = 0.1;
+  const double       angle = 20. * numbers::PI / 180.;
+  const double       g     = 1.;
   std::ostringstream text;
   text << std::setprecision(12) << "set Dimension = 2\n"
        << "subsection Background grid\n  set Upper corner = 1, 0.25\n"
        << "  set Number of cells = " << n_cells << ", " << n_cells / 4
        << "\n  set Boundary conditions = y-: friction " << mu << "\nend\n"
-       << "subsection Physics\n  set Gravity = " << g * std::sin(angle)
-       << ", " << -g * std::cos(angle) << "\nend\n"
+       << "subsection Physics\n  set Gravity = " << g * std::sin(angle) << ", "
+       << -g * std::cos(angle) << "\nend\n"
        << "subsection Materials\n  subsection elastic\n    set Density = 1\n"
        << "    set Young's modulus = 1000\n    set Poisson's ratio = 0.3\n"
        << "  end\nend\n"
@@ -92,7 +92,7 @@ roll(const unsigned int n_cells, const double mu, const bool gap_check)
 
   // The rotation angle: the angle of the best rotation of the initial onto
   // the current positions about the centre of mass.
-  const Point<2> x1 = centre_of_mass().first;
+  const Point<2> x1   = centre_of_mass().first;
   double         sine = 0., cosine = 0.;
   for (const auto &particle : *fixture.particle_handler)
     {
@@ -102,20 +102,19 @@ roll(const unsigned int n_cells, const double mu, const bool gap_check)
       sine += m * (r0[0] * r[1] - r0[1] * r[0]);
       cosine += m * (r0 * r);
     }
-  const double theta = std::atan2(sine, cosine);
-  const double dx    = x1[0] - x0[0];
+  const double theta    = std::atan2(sine, cosine);
+  const double dx       = x1[0] - x0[0];
   const double duration = (n_steps - start_step) * dt;
   const double a        = 2. * (dx - v0[0] * duration) / (duration * duration);
-  const double slip  = 1. - R * std::abs(theta) / dx;
-  const bool   rolls = mu > std::tan(angle) / 3.;
-  const double expected =
-    rolls ? 2. / 3. * g * std::sin(angle) :
-            g * (std::sin(angle) - mu * std::cos(angle));
+  const double slip     = 1. - R * std::abs(theta) / dx;
+  const bool   rolls    = mu > std::tan(angle) / 3.;
+  const double expected = rolls ? 2. / 3. * g * std::sin(angle) :
+                                  g * (std::sin(angle) - mu * std::cos(angle));
 
   deallog << std::fixed << std::setprecision(2) << "h = R/" << n_cells / 10
-          << ", mu = " << mu << " ("
-          << (rolls ? "rolls" : "slides") << "), gap check "
-          << (gap_check ? "on" : "off") << ": a / a_rigid = " << a / expected
+          << ", mu = " << mu << " (" << (rolls ? "rolls" : "slides")
+          << "), gap check " << (gap_check ? "on" : "off")
+          << ": a / a_rigid = " << a / expected
           << ", slip = " << std::setprecision(3) << slip;
   if (rolls)
     deallog << " (< 0.05: " << (std::abs(slip) < 0.05 ? "yes" : "no") << ")";

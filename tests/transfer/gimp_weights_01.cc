@@ -28,6 +28,8 @@
 
 #include "../tests.h"
 
+#include "anisotropic_box.h"
+
 using namespace grainmpm;
 
 // The 1D uGIMP factor for a node at distance r = x - x_i, cell size h,
@@ -54,16 +56,9 @@ test()
   deallog << "dim = " << dim << std::endl;
   using Layout = MaterialPointLayout<dim>;
 
-  // h = (0.5, 0.5, 0.25).
-  BackgroundGridParameters<dim> parameters;
-  for (unsigned int d = 0; d < dim; ++d)
-    {
-      parameters.lower_corner[d] = -1. + 0.5 * d;
-      parameters.upper_corner[d] = 1. + 0.5 * d;
-    }
-  parameters.n_cells = {4, 4, 8};
-  parameters.n_cells.resize(dim);
-  parameters.check();
+  // An anisotropic box with unequal cells: h = (0.5, 0.5, 0.25).
+  const BackgroundGridParameters<dim> parameters =
+    anisotropic_box_parameters<dim>();
   BackgroundGrid<dim>   grid(parameters, MPI_COMM_WORLD);
   const Tensor<1, dim> &h = grid.cell_size();
   Tensor<1, dim>        half_width;

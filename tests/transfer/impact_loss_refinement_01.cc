@@ -87,12 +87,12 @@ main(int argc, char **argv)
       std::vector<double> losses;
       for (const unsigned int n_cells : {25U, 50U, 100U})
         losses.push_back(impact_loss(kernel, n_cells));
-      deallog << kernel << ": loss of one impact on 25, 50, 100 cells = "
-              << std::fixed << std::setprecision(1) << 100. * losses[0]
-              << " %, " << 100. * losses[1] << " %, " << 100. * losses[2]
+      deallog << kernel
+              << ": loss of one impact on 25, 50, 100 cells = " << std::fixed
+              << std::setprecision(1) << 100. * losses[0] << " %, "
+              << 100. * losses[1] << " %, " << 100. * losses[2]
               << " %, falls under refinement: "
-              << (losses[2] < losses[1] && losses[1] < losses[0] ? "yes" :
-                                                                   "no")
+              << (losses[2] < losses[1] && losses[1] < losses[0] ? "yes" : "no")
               << std::defaultfloat << std::endl;
     }
 }

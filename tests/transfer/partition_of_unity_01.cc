@@ -19,6 +19,8 @@
 
 #include "../tests.h"
 
+#include "anisotropic_box.h"
+
 using namespace grainmpm;
 
 template <int dim>
@@ -51,15 +53,8 @@ test()
   deallog << "dim = " << dim << std::endl;
 
   // An anisotropic box with unequal cells: h = (0.5, 0.5, 0.25).
-  BackgroundGridParameters<dim> parameters;
-  for (unsigned int d = 0; d < dim; ++d)
-    {
-      parameters.lower_corner[d] = -1. + 0.5 * d;
-      parameters.upper_corner[d] = 1. + 0.5 * d;
-    }
-  parameters.n_cells = {4, 4, 8};
-  parameters.n_cells.resize(dim);
-  parameters.check();
+  const BackgroundGridParameters<dim> parameters =
+    anisotropic_box_parameters<dim>();
   BackgroundGrid<dim> grid(parameters, MPI_COMM_WORLD);
 
   Particles::ParticleHandler<dim> particle_handler(
