@@ -239,8 +239,7 @@ namespace grainmpm
 
   template <int dim>
   void
-  GrainContact<dim>::node_allowed_approach(const unsigned int,
-                                           const unsigned int    begin,
+  GrainContact<dim>::node_allowed_approach(const unsigned int    begin,
                                            const unsigned int    n,
                                            const double         *masses,
                                            const bool           *rigid,
@@ -559,8 +558,7 @@ namespace grainmpm
         node_slips.resize(n);
         node_allowed.assign(n, 0.);
         if (uses_gaps())
-          node_allowed_approach(node,
-                                fields.begin,
+          node_allowed_approach(fields.begin,
                                 n,
                                 fields.masses.data(),
                                 fields.rigid.get(),

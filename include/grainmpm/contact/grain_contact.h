@@ -355,13 +355,12 @@ namespace grainmpm
 
   private:
     /**
-     * The approach speeds the gaps allow the fields of @p node (slots
-     * @p begin.. of @p n fields with @p masses, @p rigid and @p normals)
-     * into @p allowed.
+     * The approach speeds the gaps allow the @p n fields of a contact node
+     * (slots @p begin.. with @p masses, @p rigid and @p normals) into
+     * @p allowed.
      */
     void
-    node_allowed_approach(const unsigned int    node,
-                          const unsigned int    begin,
+    node_allowed_approach(const unsigned int    begin,
                           const unsigned int    n,
                           const double         *masses,
                           const bool           *rigid,
