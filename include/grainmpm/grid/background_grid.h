@@ -116,20 +116,12 @@ namespace grainmpm
     node_lattice_index(const unsigned int node) const;
 
     /**
-     * The local node with lattice index @p index, or
-     * numbers::invalid_unsigned_int if that is outside the box or not a
-     * locally relevant node (a node of a locally owned or ghost cell). The
-     * nodes of the cells next to a locally owned cell are all locally
-     * relevant: the kernels that reach one cell further use this.
-     */
-    unsigned int
-    node_at(const std::array<int, dim> &index) const;
-
-    /**
      * The local node at lattice index (i_0, .., i_{dim-1}) is
-     * lattice_node(sum_d lattice_part(d, i_d)), for indices of locally
-     * relevant nodes: the same as node_at() without the range checks, for
-     * the inner loops of the transfer.
+     * lattice_node(sum_d lattice_part(d, i_d)), for the indices of locally
+     * relevant nodes (no range checks: for the inner loops of the
+     * transfer). The nodes of the cells next to a locally owned cell are
+     * all locally relevant: the kernels that reach one cell further use
+     * this.
      */
     std::size_t
     lattice_part(const unsigned int d, const int index) const
@@ -215,25 +207,6 @@ namespace grainmpm
   BackgroundGrid<dim>::cell_nodes(const unsigned int active_cell_index) const
   {
     return cell_node_table.data() + nodes_per_cell * active_cell_index;
-  }
-
-
-
-  template <int dim>
-  inline unsigned int
-  BackgroundGrid<dim>::node_at(const std::array<int, dim> &index) const
-  {
-    std::size_t position = 0;
-    std::size_t stride   = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        const int i = index[d] - lattice_origin[d];
-        if (i < 0 || i >= lattice_extent[d])
-          return numbers::invalid_unsigned_int;
-        position += stride * i;
-        stride *= lattice_extent[d];
-      }
-    return lattice_nodes[position];
   }
 } // namespace grainmpm
 

@@ -97,17 +97,6 @@ namespace grainmpm
     }
 
     /**
-     * The most nodes a particle touches along one axis: 2 (linear) or 3
-     * (GIMP). Two nodes farther apart than this along some axis are never
-     * touched by one particle.
-     */
-    unsigned int
-    nodes_per_axis() const
-    {
-      return shape_functions == ShapeFunctions::linear ? 2 : 3;
-    }
-
-    /**
      * Call @p action(e) for the entries e of particle @p p. With linear
      * shape functions every particle has 2^dim entries, and the loop has
      * that fixed length (unrolled by the compiler: the particle loops then
