@@ -177,6 +177,40 @@ namespace grainmpm
 
   template <int dim>
   void
+  Transfer<dim>::apply_consistent_mass(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                      &velocities,
+    VectorType                            &result) const
+  {
+    using Layout = MaterialPointLayout<dim>;
+    layout.reinit_vector(result, dim);
+    velocities.update_ghost_values();
+    const double *const values = velocities.begin();
+    double *const       output = result.begin();
+    for_each_particle(
+      particle_handler,
+      [&](const std::size_t p, const auto &particle)
+        __attribute__((always_inline)) {
+          const double   mass = particle->get_properties()[Layout::mass];
+          Tensor<1, dim> interpolated;
+          cache.for_each_entry(p, [&](const unsigned int e) {
+            for (unsigned int d = 0; d < dim; ++d)
+              interpolated[d] +=
+                cache.shape_values[e] * values[cache.slots[e] * dim + d];
+          });
+          cache.for_each_entry(p, [&](const unsigned int e) {
+            for (unsigned int d = 0; d < dim; ++d)
+              output[cache.slots[e] * dim + d] +=
+                mass * cache.shape_values[e] * interpolated[d];
+          });
+        });
+    result.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  void
   Transfer<dim>::velocities_from_momenta(const VectorType &masses,
                                          const VectorType &momenta,
                                          VectorType       &velocities) const

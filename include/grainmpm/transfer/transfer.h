@@ -132,6 +132,20 @@ namespace grainmpm
                       VectorType                            *mass_gradients,
                       VectorType *volumes = nullptr) const;
 
+    /**
+     * The consistent mass matrix applied to @p velocities (dim per slot),
+     * matrix-free as particle to grid of grid to particle:
+     * (M_C v)_i = sum_p m_p S_ip sum_j S_jp v_j, per field (the slots of a
+     * particle's entries all belong to its field). Its row sums are the
+     * lumped masses m_i = sum_p m_p S_ip; M_L - M_C is positive
+     * semi-definite. Collective.
+     */
+    void
+    apply_consistent_mass(
+      const Particles::ParticleHandler<dim> &particle_handler,
+      const VectorType                      &velocities,
+      VectorType                            &result) const;
+
     /** v = p / m on owned slots with mass, zero elsewhere. */
     void
     velocities_from_momenta(const VectorType &masses,
