@@ -49,7 +49,8 @@ subsection Grains
   end
 end
 subsection Material points
-  set Shape functions = )" + kernel + R"(
+  set Shape functions = )" +
+                           kernel + R"(
 end
 )";
   Parameters<2>    parameters;
@@ -63,8 +64,9 @@ end
     grid.get_mapping(),
     MaterialPointLayout<2>::n_properties);
   std::vector<std::unique_ptr<ConstitutiveModel<2>>> materials;
-  materials.emplace_back(create_constitutive_model<2>(
-    parameters.materials[0], parameters.physics.two_dimensional_model));
+  materials.emplace_back(
+    create_constitutive_model<2>(parameters.materials[0],
+                                 parameters.physics.two_dimensional_model));
   const std::vector<GrainInfo<2>> grains =
     GrainGenerator<2>(parameters).generate(grid, particle_handler);
 
@@ -106,8 +108,7 @@ end
           w.local_element(2 * s + d) =
             std::cos(2.3 * x[0] - 4.1 * x[1] + 3. * d - field);
           checkerboard.local_element(2 * s + d) =
-            (std::lround(x[0] / h) + std::lround(x[1] / h)) % 2 == 0 ? 1. :
-                                                                      -1.;
+            (std::lround(x[0] / h) + std::lround(x[1] / h)) % 2 == 0 ? 1. : -1.;
         }
     }
 
@@ -126,21 +127,19 @@ end
       largest_mass = std::max(largest_mass, masses.local_element(s));
       for (unsigned int d = 0; d < 2; ++d)
         {
-          row_sum_error =
-            std::max(row_sum_error,
-                     std::abs(M_ones.local_element(2 * s + d) -
-                              masses.local_element(s)));
+          row_sum_error = std::max(row_sum_error,
+                                   std::abs(M_ones.local_element(2 * s + d) -
+                                            masses.local_element(s)));
           lumped_u += masses.local_element(s) * u.local_element(2 * s + d) *
                       u.local_element(2 * s + d);
           lumped_checkerboard += masses.local_element(s);
         }
     }
   const MPI_Comm communicator = MPI_COMM_WORLD;
-  row_sum_error = Utilities::MPI::max(row_sum_error, communicator);
-  largest_mass  = Utilities::MPI::max(largest_mass, communicator);
-  lumped_u      = Utilities::MPI::sum(lumped_u, communicator);
-  lumped_checkerboard =
-    Utilities::MPI::sum(lumped_checkerboard, communicator);
+  row_sum_error       = Utilities::MPI::max(row_sum_error, communicator);
+  largest_mass        = Utilities::MPI::max(largest_mass, communicator);
+  lumped_u            = Utilities::MPI::sum(lumped_u, communicator);
+  lumped_checkerboard = Utilities::MPI::sum(lumped_checkerboard, communicator);
   const double checkerboard_ratio =
     (checkerboard * M_checkerboard) / lumped_checkerboard;
   const double asymmetry =
@@ -154,9 +153,9 @@ end
           << (consistent_u > 0. && consistent_u <= lumped_u ? "yes" : "no")
           << " (ratio " << std::fixed << std::setprecision(3)
           << consistent_u / lumped_u << "), checkerboard ratio "
-          << checkerboard_ratio << " < 0.5: "
-          << (checkerboard_ratio < 0.5 ? "yes" : "no") << std::defaultfloat
-          << std::endl;
+          << checkerboard_ratio
+          << " < 0.5: " << (checkerboard_ratio < 0.5 ? "yes" : "no")
+          << std::defaultfloat << std::endl;
 }
 
 
