@@ -68,16 +68,8 @@ test()
   // Positions: generic interior ones, then ones whose box is cut by the
   // lower or upper face, then a finite-difference stencil around a point
   // 0.3 l from a cell face (where the formula changes piece).
-  std::vector<Point<dim>> positions;
-  for (unsigned int k = 0; k < 6; ++k)
-    {
-      Point<dim> x;
-      for (unsigned int d = 0; d < dim; ++d)
-        x[d] = parameters.lower_corner[d] +
-               (parameters.upper_corner[d] - parameters.lower_corner[d]) *
-                 (0.15 + 0.13 * k + 0.041 * (d + 1));
-      positions.push_back(x);
-    }
+  std::vector<Point<dim>> positions =
+    spread_positions(parameters, 6, 0.15, 0.13, 0.041);
   const unsigned int n_interior = positions.size();
   for (unsigned int d = 0; d < dim; ++d)
     for (const double offset : {0., 0.1, 0.2})
@@ -94,14 +86,7 @@ test()
   for (unsigned int d = 0; d < dim; ++d)
     x0[d] = parameters.lower_corner[d] + (2. + (0.3 - 0.1 * d) * 0.25) * h[d];
   const double eps = 1e-5 * grid.minimum_cell_size();
-  positions.push_back(x0);
-  for (unsigned int d = 0; d < dim; ++d)
-    for (const double sign : {-1., 1.})
-      {
-        Point<dim> x = x0;
-        x[d] += sign * eps;
-        positions.push_back(x);
-      }
+  add_difference_stencil(positions, x0, eps);
 
   // Deformation gradients for cpGIMP: a rotation by 0.7 rad in the x-y
   // plane, and a stretch diag(1.4, 0.8, 1.2).

@@ -65,16 +65,8 @@ test()
   // A few particles at generic positions, one on a cell face, one at a
   // grid node; then a stencil x0, x0 +- eps e_d inside one cell for the
   // finite differences.
-  std::vector<Point<dim>> positions;
-  for (unsigned int k = 0; k < 4; ++k)
-    {
-      Point<dim> x;
-      for (unsigned int d = 0; d < dim; ++d)
-        x[d] = parameters.lower_corner[d] +
-               (parameters.upper_corner[d] - parameters.lower_corner[d]) *
-                 (0.1 + 0.2 * k + 0.037 * (d + 1));
-      positions.push_back(x);
-    }
+  std::vector<Point<dim>> positions =
+    spread_positions(parameters, 4, 0.1, 0.2, 0.037);
   {
     Point<dim> x = positions[0];
     x[0]         = 0.; // on the face between two cells
@@ -89,14 +81,7 @@ test()
   for (unsigned int d = 0; d < dim; ++d)
     x0[d] = parameters.lower_corner[d] + (1.3 + 0.1 * d) * grid.cell_size()[d];
   const double eps = 1e-3 * grid.minimum_cell_size();
-  positions.push_back(x0);
-  for (unsigned int d = 0; d < dim; ++d)
-    for (const double sign : {-1., 1.})
-      {
-        Point<dim> x = x0;
-        x[d] += sign * eps;
-        positions.push_back(x);
-      }
+  add_difference_stencil(positions, x0, eps);
 
   for (unsigned int i = 0; i < positions.size(); ++i)
     insert(grid, particle_handler, positions[i], i);
