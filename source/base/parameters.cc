@@ -371,7 +371,9 @@ namespace grainmpm
       "a box whose half-width along axis d grows with the deformation, "
       "sqrt((F F^T)_dd) times the initial one, at most half a cell "
       "(Wallstedt & Guilkey 2008). Near a box face the point's box is cut at "
-      "the face, which keeps the partition of unity.",
+      "the face, which keeps the partition of unity. uGIMP is the default: "
+      "one wall impact's energy loss then falls under refinement, with "
+      "linear it grows (doc/validation.md).",
       Patterns::Selection("linear|uGIMP|cpGIMP"));
     prm.leave_subsection();
   }

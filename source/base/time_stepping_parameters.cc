@@ -93,6 +93,27 @@ namespace grainmpm
                       "The FLIP weight alpha of the 'blend' update. "
                       "Dimensionless.",
                       Patterns::Double(0., 1.));
+    prm.add_parameter(
+      "Mass matrix",
+      mass_matrix_text,
+      "The grid mass matrix M of the momentum balance, of the "
+      "particle-to-grid velocity (M v = p) and of the kinetic energy "
+      "1/2 v.M v. 'lumped': the diagonal m_i = sum_p m_p S_ip; 'blended' "
+      "(implicit scheme only): (1 - alpha) lumped + alpha consistent, the "
+      "consistent mass being sum_p m_p S_ip S_jp (applied matrix-free), "
+      "alpha = Consistent mass fraction; it keeps most of the energy that "
+      "the lumped mass loses between particles and grid at every step "
+      "(doc/theory.md). 'automatic': blended for the implicit scheme, "
+      "lumped for the explicit one. Dimensionless.",
+      Patterns::Selection("automatic|lumped|blended"));
+    prm.add_parameter(
+      "Consistent mass fraction",
+      consistent_mass_fraction,
+      "alpha of the blended mass matrix. The grid-scale modes keep the mass "
+      "1 - alpha, and the GMRES iterations per Newton step grow as alpha "
+      "approaches 1 (doc/validation.md), so at most 0.95 is offered. "
+      "Dimensionless.",
+      Patterns::Double(0., 0.95));
     prm.add_parameter("Maximum number of steps",
                       maximum_number_of_steps,
                       "The run stops after this many steps even if End time "
@@ -132,6 +153,22 @@ namespace grainmpm
       flip_fraction = 1.;
     else if (velocity_update == VelocityUpdate::pic)
       flip_fraction = 0.;
+    mass_matrix = parse_choice<MassMatrixType>(
+      "Time stepping/Mass matrix = " + mass_matrix_text,
+      mass_matrix_text,
+      {{"automatic",
+        scheme == TimeSteppingScheme::implicit_theta ? MassMatrixType::blended :
+                                                       MassMatrixType::lumped},
+       {"lumped", MassMatrixType::lumped},
+       {"blended", MassMatrixType::blended}});
+    if (scheme == TimeSteppingScheme::explicit_leapfrog &&
+        mass_matrix == MassMatrixType::blended)
+      throw InputError("Time stepping/Mass matrix = blended",
+                       "applies to the implicit scheme only; the explicit "
+                       "leapfrog uses the lumped mass. Remove the entry or "
+                       "set Scheme = implicit theta.");
+    if (mass_matrix == MassMatrixType::lumped)
+      consistent_mass_fraction = 0.;
     if (time_step == 0. && cfl_number == 0.)
       throw InputError("Time stepping/CFL number",
                        "must be positive when Time step is zero.");

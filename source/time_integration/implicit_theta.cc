@@ -52,6 +52,16 @@ namespace grainmpm
     // contact and walls.
     begin_step(transfer, contact, particle_handler, time, dt, state);
     const GrainFieldLayout<dim> &layout = transfer.get_layout();
+    mass_matrix.reinit(transfer,
+                       particle_handler,
+                       state.masses,
+                       parameters.time_stepping.consistent_mass_fraction);
+    if (!mass_matrix.is_lumped())
+      {
+        // v^n = M^{-1} p in place of p / m.
+        mass_matrix.solve(state.momenta, state.velocities_p2g);
+        contact.prescribe_rigid_velocities(layout, state.velocities_p2g, time);
+      }
     copy_slot_vector(state.velocities_p2g, velocities_old);
     contact.apply_contact(layout,
                           state.masses,
@@ -64,6 +74,7 @@ namespace grainmpm
 
     residual.reinit(transfer,
                     particle_handler,
+                    mass_matrix,
                     state.masses,
                     state.normals,
                     velocities_old,
@@ -128,23 +139,10 @@ namespace grainmpm
     statistics.boundary_work += boundary_work;
 
     // Grid energies before and after (deformable slots).
-    const std::vector<bool> &field_is_rigid = transfer.get_field_is_rigid();
-    const VectorType        &masses         = state.masses;
-    const VectorType        &velocities_p2g = state.velocities_p2g;
-    const VectorType        &velocities_new = state.velocities_new;
-    double                   kinetic_old = 0., kinetic_new = 0.;
-    for (unsigned int s = 0; s < layout.n_slots(); ++s)
-      if (!field_is_rigid[layout.field(s)])
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const unsigned int k = s * dim + d;
-            kinetic_old += 0.5 * masses.local_element(s) *
-                           velocities_p2g.local_element(k) *
-                           velocities_p2g.local_element(k);
-            kinetic_new += 0.5 * masses.local_element(s) *
-                           velocities_new.local_element(k) *
-                           velocities_new.local_element(k);
-          }
+    const double kinetic_old =
+      mass_matrix.local_kinetic_energy(state.velocities_p2g);
+    const double kinetic_new =
+      mass_matrix.local_kinetic_energy(state.velocities_new);
     double energies[4] = {kinetic_old, kinetic_new, 0., 0.};
     energies[2]        = residual.old_strain_energy();
     transfer.update_particle_states(particle_handler,
@@ -165,7 +163,8 @@ namespace grainmpm
                                theta_velocities,
                                time,
                                dt,
-                               statistics);
+                               statistics,
+                               &mass_matrix);
     transfer.finish_step(particle_handler, statistics);
     statistics.residual_evaluations =
       residual.n_residual_evaluations() - evaluations_at_start;

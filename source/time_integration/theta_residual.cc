@@ -28,6 +28,7 @@ namespace grainmpm
   ThetaResidual<dim>::reinit(
     const Transfer<dim>                   &transfer,
     const Particles::ParticleHandler<dim> &particle_handler,
+    const MassMatrix<dim>                 &mass_matrix,
     const VectorType                      &masses,
     const VectorType                      &normals,
     const VectorType                      &old_velocities,
@@ -39,6 +40,7 @@ namespace grainmpm
     using Layout                              = MaterialPointLayout<dim>;
     this->transfer                            = &transfer;
     this->layout                              = &transfer.get_layout();
+    this->mass_matrix                         = &mass_matrix;
     this->masses                              = &masses;
     this->normals                             = &normals;
     this->old_velocities                      = &old_velocities;
@@ -54,7 +56,6 @@ namespace grainmpm
     particle_stresses.resize(n_particles);
     particle_volumes.resize(n_particles);
     particle_plastic_strains.resize(n_particles);
-    double largest_mass = 0.;
     transfer.for_each_particle(
       particle_handler, [&](const std::size_t p, const auto &particle) {
         const auto         properties = particle->get_properties();
@@ -65,19 +66,19 @@ namespace grainmpm
         particle_stresses[p]          = Layout::get_stress(properties);
         particle_volumes[p]           = properties[Layout::volume];
         particle_plastic_strains[p]   = properties[Layout::plastic_strain];
-        largest_mass = std::max(largest_mass, properties[Layout::mass]);
       });
-    largest_mass = Utilities::MPI::max(largest_mass, communicator());
 
-    // Unknowns: slots with a mass above 1e-6 of the largest particle mass;
-    // rigid slots are prescribed. A slot whose mass is a round-off fraction of
-    // a point's (a point on a cell face) still has a force of the point's size,
-    // grad S not being small: with a threshold of 1e-12 such slots made the
-    // Newton solve of a disk in free fall fail (7 rejected steps in
-    // tests/implicit/energy_ledger_01), with 1e-9 and 1e-6 it converges.
-    // The other slots only follow gravity, so that their points (which they
-    // move by at most 1e-6 of their mass) are not strained by a lag.
-    mass_threshold                          = 1e-6 * largest_mass;
+    // Unknowns: slots with a mass above 1e-6 of the largest particle mass
+    // (MassMatrix::light_mass_threshold(); the mass matrix gives the other,
+    // light, slots a lumped row); rigid slots are prescribed. A slot whose mass
+    // is a round-off fraction of a point's (a point on a cell face) still has a
+    // force of the point's size, grad S not being small: with a threshold of
+    // 1e-12 such slots made the Newton solve of a disk in free fall fail (7
+    // rejected steps in tests/implicit/energy_ledger_01), with 1e-9 and 1e-6 it
+    // converges. The other slots only follow gravity, so that their points
+    // (which they move by at most 1e-6 of their mass) are not strained by a
+    // lag.
+    mass_threshold = mass_matrix.light_mass_threshold();
     const std::vector<bool> &field_is_rigid = transfer.get_field_is_rigid();
     const unsigned int       n_slots        = layout->n_slots();
     slot_active.assign(n_slots, false);
@@ -93,6 +94,11 @@ namespace grainmpm
     work_projected.reinit(old_velocities, true);
     work_theta.reinit(old_velocities, true);
     work_forces.reinit(old_velocities, true);
+    if (!mass_matrix.is_lumped())
+      {
+        work_increment.reinit(old_velocities, true);
+        work_inertia.reinit(old_velocities, true);
+      }
   }
 
 
@@ -278,6 +284,16 @@ namespace grainmpm
 
     work_forces.compress(VectorOperation::add);
     work_theta.zero_out_ghost_values();
+    // M (V - v^n), before the return on inverted particles: it is
+    // collective.
+    if (!mass_matrix->is_lumped())
+      {
+        const unsigned int n = velocities.locally_owned_size();
+        for (unsigned int k = 0; k < n; ++k)
+          work_increment.local_element(k) =
+            velocities.local_element(k) - old_velocities->local_element(k);
+        mass_matrix->vmult(work_inertia, work_increment);
+      }
     if (inverted)
       {
         // NaN on this rank makes every rank's norm NaN.
@@ -285,26 +301,46 @@ namespace grainmpm
         return;
       }
 
-    // R = V - v^n - dt (f / m + g), in velocity units.
+    // R = V - v^n - dt (f / m + g), in velocity units; with the blended
+    // mass, M (V - v^n) / m in place of V - v^n.
     const unsigned int n_slots = layout->n_slots();
-    for (unsigned int s = 0; s < n_slots; ++s)
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          const unsigned int k = s * dim + d;
-          if (slot_rigid[s])
-            residual.local_element(k) =
-              velocities.local_element(k) - rigid_velocities->local_element(k);
-          else if (!slot_active[s])
-            // Too light to carry a force: it falls with gravity.
-            residual.local_element(k) = velocities.local_element(k) -
-                                        old_velocities->local_element(k) -
-                                        dt * gravity[d];
-          else
-            residual.local_element(k) =
-              velocities.local_element(k) - old_velocities->local_element(k) -
-              dt * (work_forces.local_element(k) / masses->local_element(s) +
-                    gravity[d]);
-        }
+    if (!mass_matrix->is_lumped())
+      {
+        for (unsigned int s = 0; s < n_slots; ++s)
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const unsigned int k = s * dim + d;
+              if (slot_rigid[s])
+                residual.local_element(k) = velocities.local_element(k) -
+                                            rigid_velocities->local_element(k);
+              else
+                residual.local_element(k) =
+                  work_inertia.local_element(k) / masses->local_element(s) -
+                  dt * ((slot_active[s] ? work_forces.local_element(k) /
+                                            masses->local_element(s) :
+                                          0.) +
+                        gravity[d]);
+            }
+      }
+    else
+      for (unsigned int s = 0; s < n_slots; ++s)
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const unsigned int k = s * dim + d;
+            if (slot_rigid[s])
+              residual.local_element(k) = velocities.local_element(k) -
+                                          rigid_velocities->local_element(k);
+            else if (!slot_active[s])
+              // Too light to carry a force: it falls with gravity.
+              residual.local_element(k) = velocities.local_element(k) -
+                                          old_velocities->local_element(k) -
+                                          dt * gravity[d];
+            else
+              residual.local_element(k) =
+                velocities.local_element(k) - old_velocities->local_element(k) -
+                dt * (work_forces.local_element(k) / masses->local_element(s) +
+                      gravity[d]);
+          }
     if (raw || !constrained)
       return;
 

@@ -3,6 +3,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
 
 #include <deal.II/lac/vector.h>
@@ -177,40 +178,6 @@ namespace grainmpm
 
   template <int dim>
   void
-  Transfer<dim>::apply_consistent_mass(
-    const Particles::ParticleHandler<dim> &particle_handler,
-    const VectorType                      &velocities,
-    VectorType                            &result) const
-  {
-    using Layout = MaterialPointLayout<dim>;
-    layout.reinit_vector(result, dim);
-    velocities.update_ghost_values();
-    const double *const values = velocities.begin();
-    double *const       output = result.begin();
-    for_each_particle(
-      particle_handler,
-      [&](const std::size_t p, const auto &particle)
-        __attribute__((always_inline)) {
-          const double   mass = particle->get_properties()[Layout::mass];
-          Tensor<1, dim> interpolated;
-          cache.for_each_entry(p, [&](const unsigned int e) {
-            for (unsigned int d = 0; d < dim; ++d)
-              interpolated[d] +=
-                cache.shape_values[e] * values[cache.slots[e] * dim + d];
-          });
-          cache.for_each_entry(p, [&](const unsigned int e) {
-            for (unsigned int d = 0; d < dim; ++d)
-              output[cache.slots[e] * dim + d] +=
-                mass * cache.shape_values[e] * interpolated[d];
-          });
-        });
-    result.compress(VectorOperation::add);
-  }
-
-
-
-  template <int dim>
-  void
   Transfer<dim>::velocities_from_momenta(const VectorType &masses,
                                          const VectorType &momenta,
                                          VectorType       &velocities) const
@@ -344,7 +311,8 @@ namespace grainmpm
     const VectorType                &position_velocities,
     const double                     time,
     const double                     dt,
-    StepStatistics                  &statistics)
+    StepStatistics                  &statistics,
+    const MassMatrix<dim>           *mass_matrix)
   {
     using Layout                = MaterialPointLayout<dim>;
     const double          flip  = parameters.time_stepping.flip_fraction;
@@ -478,17 +446,21 @@ namespace grainmpm
     statistics.max_speed = std::sqrt(max_speed_square);
 
     double grid_kinetic_change = 0.;
-    for (unsigned int s = 0; s < layout.n_slots(); ++s)
-      if (!field_is_rigid[layout.field(s)])
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const unsigned int k = s * dim + d;
-            grid_kinetic_change += 0.5 * masses.local_element(s) *
-                                   (velocities_new.local_element(k) *
-                                      velocities_new.local_element(k) -
-                                    velocities_p2g.local_element(k) *
-                                      velocities_p2g.local_element(k));
-          }
+    if (mass_matrix != nullptr && !mass_matrix->is_lumped())
+      grid_kinetic_change = mass_matrix->local_kinetic_energy(velocities_new) -
+                            mass_matrix->local_kinetic_energy(velocities_p2g);
+    else
+      for (unsigned int s = 0; s < layout.n_slots(); ++s)
+        if (!field_is_rigid[layout.field(s)])
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const unsigned int k = s * dim + d;
+              grid_kinetic_change += 0.5 * masses.local_element(s) *
+                                     (velocities_new.local_element(k) *
+                                        velocities_new.local_element(k) -
+                                      velocities_p2g.local_element(k) *
+                                        velocities_p2g.local_element(k));
+            }
     statistics.transfer_energy_change =
       particle_kinetic_change - grid_kinetic_change;
   }

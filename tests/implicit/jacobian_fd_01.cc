@@ -5,7 +5,9 @@
 // (eq. 15) equals the exact action of the Jacobian M^-1 (M + theta^2 dt^2
 // K) (doc/theory.md section 11) on random vectors, for an
 // unstressed elastic grain without contact, with both differencing steps;
-// K is assembled independently in the test. Also: the residual is a pure
+// K is assembled independently in the test, M is the lumped mass (the
+// blended mass matrix is tested by tests/implicit/probed_diagonal_01 and
+// tests/transfer/consistent_mass_01). Also: the residual is a pure
 // function (two evaluations are bit-identical and leave the particles
 // untouched).
 
@@ -26,7 +28,12 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 
-  ImplicitFixture<2> fixture(elastic_block_parameters(), "jacobian_fd_01");
+  ImplicitFixture<2> fixture(elastic_block_parameters(R"(
+subsection Time stepping
+  set Mass matrix = lumped
+end
+)"),
+                             "jacobian_fd_01");
   auto              &stepper = *fixture.stepper;
   const double       dt      = fixture.parameters.time_stepping.time_step;
   const double       theta   = fixture.parameters.time_stepping.theta;

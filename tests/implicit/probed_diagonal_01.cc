@@ -10,8 +10,10 @@
 //    simplified Jacobian probed one unknown at a time (so the colouring
 //    is exact also at contact nodes).
 // Both with the linear and with the uGIMP shape functions (a point touches
-// up to 3 nodes per axis: the period 3 of the colours is still exact), on
-// points moved off their regular arrangement.
+// up to 3 nodes per axis: the period 3 of the colours is still exact), with
+// the lumped and with the blended mass matrix (whose consistent part couples
+// the same slots as the stiffness and adds alpha (sum_p m_p S_ip^2 / m_i - 1)
+// to the diagonal), on points moved off their regular arrangement.
 
 #include "../tests.h"
 
@@ -35,9 +37,10 @@ max_relative_difference(const VectorType &a, const VectorType &b)
 
 
 std::string
-kernel_text(const std::string &kernel)
+kernel_text(const std::string &kernel, const std::string &mass_matrix)
 {
   return "subsection Material points\n  set Shape functions = " + kernel +
+         "\nend\nsubsection Time stepping\n  set Mass matrix = " + mass_matrix +
          "\nend\n";
 }
 
@@ -64,10 +67,13 @@ jitter(ImplicitFixture<2> &fixture)
 
 
 void
-check_analytic_diagonal(const std::string &kernel)
+check_analytic_diagonal(const std::string &kernel,
+                        const std::string &mass_matrix)
 {
-  deallog << "Shape functions = " << kernel << std::endl;
-  ImplicitFixture<2> fixture(elastic_block_parameters(kernel_text(kernel)),
+  deallog << "Shape functions = " << kernel << ", Mass matrix = " << mass_matrix
+          << std::endl;
+  ImplicitFixture<2> fixture(elastic_block_parameters(
+                               kernel_text(kernel, mass_matrix)),
                              "probed_diagonal_01");
   jitter(fixture);
   auto        &stepper  = *fixture.stepper;
@@ -97,8 +103,9 @@ check_analytic_diagonal(const std::string &kernel)
                fixture.parameters.material_points.shape_functions,
                half_width);
   layout.reinit(cache, *fixture.grid);
-  VectorType stiffness(V);
+  VectorType stiffness(V), mass_diagonal(V);
   stiffness     = 0.;
+  mass_diagonal = 0.;
   std::size_t p = 0;
   for_each_particle(
     *fixture.grid,
@@ -106,11 +113,16 @@ check_analytic_diagonal(const std::string &kernel)
     [&](const auto &, const auto &particle) {
       const double volume =
         particle->get_properties()[MaterialPointLayout<2>::volume];
+      const double mass =
+        particle->get_properties()[MaterialPointLayout<2>::mass];
       for (unsigned int v = cache.first_entry[p]; v < cache.first_entry[p + 1];
            ++v)
         {
-          const auto &G    = cache.shape_gradients[v];
-          const auto  slot = cache.slots[v];
+          const auto  &G    = cache.shape_gradients[v];
+          const auto   slot = cache.slots[v];
+          const double S    = cache.shape_values[v];
+          for (unsigned int d = 0; d < 2; ++d)
+            mass_diagonal.local_element(2 * slot + d) += mass * S * S;
           stiffness.local_element(2 * slot) +=
             volume * ((block_lambda + 2. * block_mu) * G[0] * G[0] +
                       block_mu * G[1] * G[1]);
@@ -120,15 +132,20 @@ check_analytic_diagonal(const std::string &kernel)
         }
       ++p;
     });
-  VectorType analytic(V);
-  double     largest_stiffness_ratio = 0.;
+  // With the blended mass matrix M = (1 - alpha) M_L + alpha M_C the
+  // diagonal of M_L^-1 M is 1 - alpha + alpha sum_p m_p S_ip^2 / m_i.
+  VectorType   analytic(V);
+  double       largest_stiffness_ratio = 0.;
+  const double alpha =
+    fixture.parameters.time_stepping.consistent_mass_fraction;
   for (unsigned int k = 0; k < V.size(); ++k)
     {
-      const double ratio = theta * theta * dt * dt *
-                           stiffness.local_element(k) /
-                           stepper.get_masses().local_element(k / 2);
-      analytic.local_element(k) = 1. + ratio;
-      largest_stiffness_ratio   = std::max(largest_stiffness_ratio, ratio);
+      const double m = stepper.get_masses().local_element(k / 2);
+      const double ratio =
+        theta * theta * dt * dt * stiffness.local_element(k) / m;
+      analytic.local_element(k) =
+        1. - alpha + alpha * mass_diagonal.local_element(k) / m + ratio;
+      largest_stiffness_ratio = std::max(largest_stiffness_ratio, ratio);
     }
   const double difference = max_relative_difference(diagonal, analytic);
   deallog << "largest theta^2 dt^2 K_ii / m_i > 1: "
@@ -142,7 +159,8 @@ check_analytic_diagonal(const std::string &kernel)
 
 
 void
-check_contact_diagonal(const std::string &kernel)
+check_contact_diagonal(const std::string &kernel,
+                       const std::string &mass_matrix)
 {
   const std::string text = unit_square_and_material(10) + R"(
 subsection Grains
@@ -169,7 +187,7 @@ subsection Time stepping
   set Scheme    = implicit theta
   set Time step = 5.45e-3
 end
-)" + kernel_text(kernel);
+)" + kernel_text(kernel, mass_matrix);
   ImplicitFixture<2> fixture(text, "probed_diagonal_01_contact");
   jitter(fixture);
   auto &stepper       = *fixture.stepper;
@@ -221,8 +239,9 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
   for (const std::string kernel : {"linear", "uGIMP"})
-    {
-      check_analytic_diagonal(kernel);
-      check_contact_diagonal(kernel);
-    }
+    for (const std::string mass_matrix : {"lumped", "blended"})
+      {
+        check_analytic_diagonal(kernel, mass_matrix);
+        check_contact_diagonal(kernel, mass_matrix);
+      }
 }

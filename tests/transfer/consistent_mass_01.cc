@@ -1,19 +1,23 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Transfer::apply_consistent_mass, the matrix-free consistent mass matrix
-// M_C = P2G of G2P, on two touching grains with linear and uGIMP shape
-// functions, points moved off their regular arrangement, on 1 and 2 ranks:
+// MassMatrix, the matrix-free consistent mass matrix M_C = P2G of G2P
+// (consistent fraction 1) and its blend with the lumped mass, on two
+// touching grains with linear and uGIMP shape functions, points moved off
+// their regular arrangement, on 1 and 2 ranks:
 // - its row sums are the lumped masses: M_C 1 = m;
 // - it is symmetric: u . M_C w = w . M_C u;
 // - it lies between zero and the lumped mass: 0 < v . M_C v <= v . M_L v
 //   (Jensen's inequality per particle), near the lumped mass for a smooth
-//   field and far below it for the checkerboard mode of the grid.
+//   field and far below it for the checkerboard mode of the grid;
+// - the blend M = 0.1 M_L + 0.9 M_C: MassMatrix::solve inverts vmult, and
+//   the kinetic energy is 1/2 u.M u.
 
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
 
 #include "../tests.h"
@@ -112,13 +116,15 @@ end
         }
     }
 
+  MassMatrix<2> consistent;
+  consistent.reinit(transfer, particle_handler, masses, 1.);
   VectorType M_ones, M_u, M_w, M_checkerboard;
-  transfer.apply_consistent_mass(particle_handler,
-                                 checkerboard,
-                                 M_checkerboard);
-  transfer.apply_consistent_mass(particle_handler, ones, M_ones);
-  transfer.apply_consistent_mass(particle_handler, u, M_u);
-  transfer.apply_consistent_mass(particle_handler, w, M_w);
+  for (VectorType *v : {&M_ones, &M_u, &M_w, &M_checkerboard})
+    layout.reinit_vector(*v, 2);
+  consistent.vmult(M_checkerboard, checkerboard);
+  consistent.vmult(M_ones, ones);
+  consistent.vmult(M_u, u);
+  consistent.vmult(M_w, w);
 
   double row_sum_error = 0., largest_mass = 0., lumped_u = 0.,
          lumped_checkerboard = 0.;
@@ -156,6 +162,27 @@ end
           << checkerboard_ratio
           << " < 0.5: " << (checkerboard_ratio < 0.5 ? "yes" : "no")
           << std::defaultfloat << std::endl;
+
+  // The blend: solve M x = M u and compare with u; 1/2 u.M u.
+  MassMatrix<2> blended;
+  blended.reinit(transfer, particle_handler, masses, 0.9);
+  VectorType M_blend_u, x;
+  layout.reinit_vector(M_blend_u, 2);
+  blended.vmult(M_blend_u, u);
+  const unsigned int iterations = blended.solve(M_blend_u, x);
+  x -= u;
+  const double energy =
+    Utilities::MPI::sum(blended.local_kinetic_energy(u), communicator);
+  deallog << kernel << ": blend 0.9: solve M x = M u to |x - u| / |u| < 1e-9: "
+          << (x.l2_norm() / u.l2_norm() < 1e-9 ? "yes" : "no")
+          << " in at most 40 CG iterations: "
+          << (iterations <= 40 ? "yes" : "no")
+          << ", 1/2 u.M u = 1/2 (0.1 u.M_L u + 0.9 u.M_C u): "
+          << (std::abs(energy - 0.5 * (0.1 * lumped_u + 0.9 * consistent_u)) <
+                  1e-13 * lumped_u ?
+                "yes" :
+                "no")
+          << std::endl;
 }
 
 

@@ -9,7 +9,9 @@
 // implicit step conserves the grid energy through the impact; what is lost
 // is removed by the FLIP grid-to-particle transfer, mainly the grid-scale
 // noise of points crossing cell faces. With linear hats the loss grows
-// under refinement; with uGIMP it falls.
+// under refinement; with uGIMP it falls. Both with the default blended
+// mass matrix (5.1 / 9.5 / 21.0 % and 2.5 / 1.0 / 0.9 %; with the lumped
+// mass 7.8 / 9.5 / 15.2 % and 5.5 / 2.6 / 1.7 %).
 
 #include "../tests.h"
 

@@ -154,8 +154,8 @@ namespace grainmpm
   struct MaterialPointParameters
   {
     unsigned int   particles_per_cell   = 2;
-    std::string    shape_functions_text = "linear";
-    ShapeFunctions shape_functions      = ShapeFunctions::linear;
+    std::string    shape_functions_text = "uGIMP";
+    ShapeFunctions shape_functions      = ShapeFunctions::ugimp;
 
     void
     declare(ParameterHandler &prm);
@@ -208,6 +208,15 @@ namespace grainmpm
   };
 
   /**
+   * The grid mass matrix of the implicit scheme (see MassMatrix).
+   */
+  enum class MassMatrixType
+  {
+    lumped,
+    blended
+  };
+
+  /**
    * Subsection "Time stepping".
    */
   struct TimeSteppingParameters
@@ -230,8 +239,15 @@ namespace grainmpm
     std::string    velocity_update_text = "FLIP";
     VelocityUpdate velocity_update      = VelocityUpdate::flip;
     /** The FLIP weight: set by check() to 1 (FLIP) or 0 (PIC). */
-    double       flip_fraction           = 1.;
-    unsigned int maximum_number_of_steps = 100000000;
+    double         flip_fraction           = 1.;
+    unsigned int   maximum_number_of_steps = 100000000;
+    std::string    mass_matrix_text        = "automatic";
+    MassMatrixType mass_matrix             = MassMatrixType::lumped;
+    /**
+     * The consistent fraction alpha of the blended mass matrix: set by
+     * check() to 0 with the lumped mass.
+     */
+    double consistent_mass_fraction = 0.95;
 
     void
     declare(ParameterHandler &prm);

@@ -15,12 +15,15 @@ namespace grainmpm
    * The fully implicit theta step of Cummins & Brackbill (2001), eqs.
    * (11)-(20):
    *
-   * 1. P2G of mass, momentum and mass gradients at t^n; contact and walls
-   *    on v^n (the reference v^n of the step); normals frozen.
+   * 1. P2G of mass, momentum and mass gradients at t^n; v^n from
+   *    M v^n = p with the grid mass matrix M (`Time stepping/Mass
+   *    matrix`: lumped, or blended with the consistent mass); contact and
+   *    walls on v^n (the reference v^n of the step); normals frozen.
    * 2. Solve R(v^{n+1}) = 0 (ThetaResidual) by Jacobian-free Newton-Krylov
    *    (NewtonKrylovSolver) from v^n or an explicit predictor.
-   * 3. Momentum-exact final velocity v* = v^n + dt (f / m + g) with the
-   *    forces of the converged iterate (v* = V - R(V)), then the contact
+   * 3. Momentum-exact final velocity v* = V - R(V) (with the lumped mass
+   *    v^n + dt (f / m + g), the forces of the converged iterate), then the
+   *    contact
    *    projection and walls with the converged status: the grid velocity
    *    v^{n+1}. Total momentum then changes exactly by the external
    *    impulse, whatever the Newton tolerance.
@@ -88,9 +91,16 @@ namespace grainmpm
       return solver;
     }
 
+    /** The grid mass matrix of the last prepared step. */
+    const MassMatrix<dim> &
+    get_mass_matrix() const
+    {
+      return mass_matrix;
+    }
+
     /**
-     * Grid energy 1/2 sum_s m_s |v_s|^2 + sum_p V_p W(sigma_p) of the
-     * deformable grains at the start and at the end of the last step.
+     * Grid energy 1/2 v.M v + sum_p V_p W(sigma_p) of the deformable
+     * grains at the start and at the end of the last step.
      */
     std::pair<double, double>
     get_grid_energies() const
@@ -103,6 +113,7 @@ namespace grainmpm
     Transfer<dim>          transfer;
     GrainContact<dim>      contact;
     GridState<dim>         state;
+    MassMatrix<dim>        mass_matrix;
 
     ThetaResidual<dim>        residual;
     NewtonKrylovSolver        solver;

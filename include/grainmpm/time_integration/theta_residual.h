@@ -9,6 +9,7 @@
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/solvers/newton_krylov.h>
+#include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
 
 #include <deal.II/base/symmetric_tensor.h>
@@ -25,12 +26,15 @@ namespace grainmpm
 {
   /**
    * The residual of the implicit theta scheme (Cummins & Brackbill 2001,
-   * eq. 16), divided by the slot mass so
+   * eq. 16), divided by the lumped slot mass m_s so
    * that it has velocity units. The unknown V holds v^{n+1} for every slot
    * (dim numbers per slot, the layout of GrainFieldLayout):
    *
-   *   R_s(V) = V_s - v^n_s - dt (f^int_s(sigma^theta, V^theta) / m_s + g),
+   *   R_s(V) = (M (V - v^n))_s / m_s - dt (f^int_s(sigma^theta, V^theta) / m_s
+   *            + g),
    *
+   * M being the grid mass matrix (MassMatrix: the lumped mass, for which
+   * the first term is V_s - v^n_s, or its blend with the consistent mass),
    * where the internal force is -sum_p V_p^theta sigma_p^theta . grad S_ip
    * over the particles of the slot's grain, with
    * sigma^theta = (1 - theta) sigma^n + theta Phi(sigma^n, dt grad v^theta),
@@ -40,7 +44,8 @@ namespace grainmpm
    * freeze_status(). The projected end velocity is
    * Pi_theta(V) = (v^theta - (1 - theta) v^n) / theta. Slots of rigid
    * grains have R = V - (prescribed velocity at t + dt); slots with less
-   * than 1e-6 of the largest particle mass R = V - v^n - dt g.
+   * than 1e-6 of the largest particle mass carry no force:
+   * R = (M (V - v^n))_s / m_s - dt g.
    *
    * The constraints act on v^theta, the velocity that moves the particles
    * and strains them, not on v^{n+1}: then no grain moves into another or
@@ -97,12 +102,14 @@ namespace grainmpm
      * cache of @p transfer), and keep references to @p transfer, the slot
      * @p masses, contact @p normals, the velocities @p old_velocities (v^n
      * after contact and walls) and the prescribed velocities
-     * @p rigid_velocities at t + dt of rigid slots. All referenced objects
+     * @p rigid_velocities at t + dt of rigid slots, and the grid
+     * @p mass_matrix (set up with @p masses). All referenced objects
      * must live until the step is done.
      */
     void
     reinit(const Transfer<dim>                   &transfer,
            const Particles::ParticleHandler<dim> &particle_handler,
+           const MassMatrix<dim>                 &mass_matrix,
            const VectorType                      &masses,
            const VectorType                      &normals,
            const VectorType                      &old_velocities,
@@ -228,6 +235,7 @@ namespace grainmpm
 
     const Transfer<dim>         *transfer         = nullptr;
     const GrainFieldLayout<dim> *layout           = nullptr;
+    const MassMatrix<dim>       *mass_matrix      = nullptr;
     const VectorType            *masses           = nullptr;
     const VectorType            *normals          = nullptr;
     const VectorType            *old_velocities   = nullptr;
@@ -251,9 +259,12 @@ namespace grainmpm
     ContactStatus<dim> status;
 
     /** Work vectors of evaluate(). */
-    mutable VectorType    work_projected;
-    mutable VectorType    work_theta;
-    mutable VectorType    work_forces;
+    mutable VectorType work_projected;
+    mutable VectorType work_theta;
+    mutable VectorType work_forces;
+    /** V - v^n and M (V - v^n) (blended mass only). */
+    mutable VectorType    work_increment;
+    mutable VectorType    work_inertia;
     mutable unsigned long evaluation_count = 0;
   };
 

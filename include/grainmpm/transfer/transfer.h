@@ -24,6 +24,9 @@
 
 namespace grainmpm
 {
+  template <int dim>
+  class MassMatrix;
+
   /**
    * The particle-grid transfer of one step: the single place where the
    * shape functions (`Material points/Shape functions`: linear, uGIMP or
@@ -132,20 +135,6 @@ namespace grainmpm
                       VectorType                            *mass_gradients,
                       VectorType *volumes = nullptr) const;
 
-    /**
-     * The consistent mass matrix applied to @p velocities (dim per slot),
-     * matrix-free as particle to grid of grid to particle:
-     * (M_C v)_i = sum_p m_p S_ip sum_j S_jp v_j, per field (the slots of a
-     * particle's entries all belong to its field). Its row sums are the
-     * lumped masses m_i = sum_p m_p S_ip; M_L - M_C is positive
-     * semi-definite. Collective.
-     */
-    void
-    apply_consistent_mass(
-      const Particles::ParticleHandler<dim> &particle_handler,
-      const VectorType                      &velocities,
-      VectorType                            &result) const;
-
     /** v = p / m on owned slots with mass, zero elsewhere. */
     void
     velocities_from_momenta(const VectorType &masses,
@@ -228,8 +217,10 @@ namespace grainmpm
      * velocity. Records particles that left through open faces (removed by
      * finish_step()) and whether the handler needs sorting, and the energy
      * the velocity update adds beyond the change of the grid kinetic
-     * energy (StepStatistics::transfer_energy_change). Throws InputError
-     * on all ranks if a particle leaves through a closed face.
+     * energy (StepStatistics::transfer_energy_change), the grid kinetic
+     * energy being 1/2 v.M v with the mass matrix @p mass_matrix if given,
+     * with the lumped @p masses otherwise. Throws InputError on all ranks
+     * if a particle leaves through a closed face.
      */
     void
     grid_to_particles(Particles::ParticleHandler<dim> &particle_handler,
@@ -239,7 +230,8 @@ namespace grainmpm
                       const VectorType                &position_velocities,
                       const double                     time,
                       const double                     dt,
-                      StepStatistics                  &statistics);
+                      StepStatistics                  &statistics,
+                      const MassMatrix<dim>           *mass_matrix = nullptr);
 
     /**
      * Remove the particles that left, reduce @p statistics over the ranks
