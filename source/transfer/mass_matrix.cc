@@ -62,23 +62,28 @@ namespace grainmpm
       }
     lumped_masses.zero_out_ghost_values();
 
-    // The diagonal: (1 - alpha) m_i + alpha sum_p m_p S_ip (S_ip + the
-    // weight of the particle's lumped slots); m_i for lumped rows.
+    // The weights of the consistent part per entry (zero at lumped slots)
+    // and the weight of the lumped slots per particle; the diagonal
+    // (1 - alpha) m_i + alpha sum_p m_p S_ip (S_ip + that weight), m_i for
+    // lumped rows.
+    const TransferCache<dim> &cache = transfer.get_cache();
+    consistent_shapes.resize(cache.n_entries());
+    lumped_weights.assign(particle_masses.size(), 0.);
     layout.reinit_vector(diagonal, dim);
-    const TransferCache<dim> &cache  = transfer.get_cache();
-    double *const             values = diagonal.begin();
+    double *const values = diagonal.begin();
     for (std::size_t p = 0; p < particle_masses.size(); ++p)
       {
-        double lumped_weight = 0.;
         cache.for_each_entry(p, [&](const unsigned int e) {
-          if (slot_lumped[cache.slots[e]])
-            lumped_weight += cache.shape_values[e];
+          const bool lumped    = slot_lumped[cache.slots[e]];
+          consistent_shapes[e] = lumped ? 0. : cache.shape_values[e];
+          if (lumped)
+            lumped_weights[p] += cache.shape_values[e];
         });
         cache.for_each_entry(p, [&](const unsigned int e) {
           const double shape = cache.shape_values[e];
           for (unsigned int d = 0; d < dim; ++d)
             values[cache.slots[e] * dim + d] +=
-              particle_masses[p] * shape * (shape + lumped_weight);
+              particle_masses[p] * shape * (shape + lumped_weights[p]);
         });
       }
     diagonal.compress(VectorOperation::add);
@@ -103,33 +108,29 @@ namespace grainmpm
     const double *const       values = src.begin();
     double *const             output = dst.begin();
     // Per particle: the interpolation over its slots with a consistent
-    // row, and the weight of its lumped slots, which act on the diagonal.
+    // row (weights consistent_shapes, zero at lumped slots), and the weight
+    // of its lumped slots, which acts on the diagonal. What this adds to
+    // lumped rows is replaced by vmult().
+    const double *const       shapes  = cache.shape_values.data();
+    const double *const       weights = consistent_shapes.data();
+    const unsigned int *const slots   = cache.slots.data();
     for (std::size_t p = 0; p < particle_masses.size(); ++p)
       {
         const double mass = particle_masses[p];
         if (mass == 0.)
           continue;
-        Tensor<1, dim> interpolated;
-        double         lumped_weight = 0.;
+        double interpolated[dim] = {};
         cache.for_each_entry(p, [&](const unsigned int e) {
-          const unsigned int slot = cache.slots[e];
-          if (slot_lumped[slot])
-            lumped_weight += cache.shape_values[e];
-          else
-            for (unsigned int d = 0; d < dim; ++d)
-              interpolated[d] += cache.shape_values[e] * values[slot * dim + d];
+          for (unsigned int d = 0; d < dim; ++d)
+            interpolated[d] += weights[e] * values[slots[e] * dim + d];
         });
+        const double lumped_weight = lumped_weights[p];
         cache.for_each_entry(p, [&](const unsigned int e) {
-          const unsigned int slot   = cache.slots[e];
-          const double       weight = mass * cache.shape_values[e];
-          if (slot_lumped[slot])
-            for (unsigned int d = 0; d < dim; ++d)
-              output[slot * dim + d] += weight * values[slot * dim + d];
-          else
-            for (unsigned int d = 0; d < dim; ++d)
-              output[slot * dim + d] +=
-                weight *
-                (interpolated[d] + lumped_weight * values[slot * dim + d]);
+          const double weight = mass * shapes[e];
+          for (unsigned int d = 0; d < dim; ++d)
+            output[slots[e] * dim + d] +=
+              weight *
+              (interpolated[d] + lumped_weight * values[slots[e] * dim + d]);
         });
       }
   }

@@ -137,6 +137,10 @@ namespace grainmpm
      * light, or rigid.
      */
     std::vector<bool> slot_lumped;
+    /** S_ip of each cache entry, zero where the slot is lumped. */
+    std::vector<double> consistent_shapes;
+    /** Per particle, the sum of S_ip over its lumped slots. */
+    std::vector<double> lumped_weights;
     /** The diagonal of M per unknown (dim per slot). */
     VectorType diagonal;
   };
