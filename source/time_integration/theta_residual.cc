@@ -302,45 +302,31 @@ namespace grainmpm
       }
 
     // R = V - v^n - dt (f / m + g), in velocity units; with the blended
-    // mass, M (V - v^n) / m in place of V - v^n.
+    // mass, M (V - v^n) / m in place of V - v^n. Slots too light to carry
+    // a force fall with gravity.
     const unsigned int n_slots = layout->n_slots();
-    if (!mass_matrix->is_lumped())
-      {
-        for (unsigned int s = 0; s < n_slots; ++s)
-          for (unsigned int d = 0; d < dim; ++d)
+    const bool         lumped  = mass_matrix->is_lumped();
+    for (unsigned int s = 0; s < n_slots; ++s)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const unsigned int k = s * dim + d;
+          if (slot_rigid[s])
             {
-              const unsigned int k = s * dim + d;
-              if (slot_rigid[s])
-                residual.local_element(k) = velocities.local_element(k) -
-                                            rigid_velocities->local_element(k);
-              else
-                residual.local_element(k) =
-                  work_inertia.local_element(k) / masses->local_element(s) -
-                  dt * ((slot_active[s] ? work_forces.local_element(k) /
-                                            masses->local_element(s) :
-                                          0.) +
-                        gravity[d]);
-            }
-      }
-    else
-      for (unsigned int s = 0; s < n_slots; ++s)
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            const unsigned int k = s * dim + d;
-            if (slot_rigid[s])
               residual.local_element(k) = velocities.local_element(k) -
                                           rigid_velocities->local_element(k);
-            else if (!slot_active[s])
-              // Too light to carry a force: it falls with gravity.
-              residual.local_element(k) = velocities.local_element(k) -
-                                          old_velocities->local_element(k) -
-                                          dt * gravity[d];
-            else
-              residual.local_element(k) =
-                velocities.local_element(k) - old_velocities->local_element(k) -
-                dt * (work_forces.local_element(k) / masses->local_element(s) +
-                      gravity[d]);
-          }
+              continue;
+            }
+          const double inertia =
+            lumped ?
+              velocities.local_element(k) - old_velocities->local_element(k) :
+              work_inertia.local_element(k) / masses->local_element(s);
+          const double acceleration =
+            slot_active[s] ?
+              work_forces.local_element(k) / masses->local_element(s) :
+              0.;
+          residual.local_element(k) =
+            inertia - dt * (acceleration + gravity[d]);
+        }
     if (raw || !constrained)
       return;
 
