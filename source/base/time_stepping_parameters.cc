@@ -61,10 +61,14 @@ namespace grainmpm
       stress_update_text,
       "Where in the explicit step the stress is updated: 'USF' (update "
       "stress first, from the grid velocity of the particle-to-grid "
-      "transfer, as in eqs. 8-9 of Cummins & Brackbill) or 'MUSL' (after "
+      "transfer, as in eqs. 8-9 of Cummins & Brackbill), 'MUSL' (after "
       "the particle update, from the grid velocity remapped from the new "
-      "particle momenta). Dimensionless.",
-      Patterns::Selection("USF|MUSL"));
+      "particle momenta) or 'USL' (after the grid update, from the "
+      "contact- and wall-constrained new grid velocity, the one that also "
+      "moves the particles: a contact or wall reaction then does no work "
+      "on the strain, and grains in sustained contact do not gain energy, "
+      "which they do with USF and MUSL; doc/validation.md). Dimensionless.",
+      Patterns::Selection("USF|MUSL|USL"));
     prm.add_parameter("End time",
                       end_time,
                       "The time at which the run stops. Units: time.",
@@ -132,13 +136,16 @@ namespace grainmpm
       scheme_text,
       {{"explicit leapfrog", TimeSteppingScheme::explicit_leapfrog},
        {"implicit theta", TimeSteppingScheme::implicit_theta}});
-    stress_update = parse_choice<StressUpdate>(
-      "Time stepping/Stress update = " + stress_update_text,
-      stress_update_text,
-      {{"USF", StressUpdate::usf}, {"MUSL", StressUpdate::musl}});
+    stress_update =
+      parse_choice<StressUpdate>("Time stepping/Stress update = " +
+                                   stress_update_text,
+                                 stress_update_text,
+                                 {{"USF", StressUpdate::usf},
+                                  {"MUSL", StressUpdate::musl},
+                                  {"USL", StressUpdate::usl}});
     if (scheme == TimeSteppingScheme::implicit_theta &&
-        stress_update == StressUpdate::musl)
-      throw InputError("Time stepping/Stress update = MUSL",
+        stress_update != StressUpdate::usf)
+      throw InputError("Time stepping/Stress update = " + stress_update_text,
                        "applies to the explicit scheme only; the implicit "
                        "scheme uses the theta-centred stress of eqs. 12-13. "
                        "Remove the entry or set it to USF.");

@@ -68,7 +68,14 @@ namespace grainmpm
                                dt,
                                statistics);
 
-    if (parameters.time_stepping.stress_update == StressUpdate::musl)
+    if (parameters.time_stepping.stress_update == StressUpdate::usl)
+      // The strain velocity is v^{n+1}, the constrained velocity that moved
+      // the particles.
+      transfer.update_particle_states(particle_handler,
+                                      state.velocities_new,
+                                      dt,
+                                      statistics.plastic_work);
+    else if (parameters.time_stepping.stress_update == StressUpdate::musl)
       {
         // The strain velocity remapped from the new particle momenta.
         transfer.particles_to_grid(particle_handler,

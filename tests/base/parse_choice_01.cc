@@ -159,7 +159,7 @@ main(int argc, char **argv)
     time_stepping.scheme_text = "implicit Euler";
     check("scheme", time_stepping);
     time_stepping                    = TimeSteppingParameters();
-    time_stepping.stress_update_text = "USL";
+    time_stepping.stress_update_text = "USLX";
     check("stress update", time_stepping);
     time_stepping                      = TimeSteppingParameters();
     time_stepping.velocity_update_text = "APIC";

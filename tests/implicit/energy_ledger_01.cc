@@ -32,55 +32,15 @@
 
 #include "../tests.h"
 
+#include "../energy_csv.h"
 #include "elastic_block.h"
 
 using namespace grainmpm;
-
-/** The columns of an energy.csv, by name without the unit. */
-std::map<std::string, std::vector<double>>
-read_energy(const std::string &directory)
-{
-  std::ifstream            file(directory + "/energy.csv");
-  std::string              line;
-  std::vector<std::string> names;
-  std::getline(file, line);
-  {
-    std::istringstream header(line);
-    std::string        name;
-    while (std::getline(header, name, ','))
-      names.push_back(name.substr(0, name.find(" [")));
-  }
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(file, line))
-    {
-      std::istringstream row(line);
-      std::string        value;
-      for (unsigned int c = 0; std::getline(row, value, ','); ++c)
-        columns[names[c]].push_back(std::stod(value));
-    }
-  return columns;
-}
-
-
 
 std::string
 yes_no(const bool condition)
 {
   return condition ? "yes" : "no";
-}
-
-
-
-/** Run @p text as NAME.prm, return its energy.csv columns. */
-std::map<std::string, std::vector<double>>
-run_case(const std::string &name, const std::string &text)
-{
-  std::ofstream(name + ".prm")
-    << text << "\nsubsection Output\n  set Output directory = results-" << name
-    << "\n  set Test mode = true\n  set Write particles = false\n"
-    << "  set Write grid = false\nend\n";
-  grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
-  return read_energy("results-" + name);
 }
 
 

@@ -185,7 +185,8 @@ namespace grainmpm
   enum class StressUpdate
   {
     usf,
-    musl
+    musl,
+    usl
   };
 
   /**

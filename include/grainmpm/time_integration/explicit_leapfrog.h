@@ -19,7 +19,12 @@ namespace grainmpm
    * forces from the new stress, v^L = v^n + dt f/m, contact and walls on v^L,
    * G2P. MUSL: forces from the old stress, v^L, contact, walls, G2P, then
    * the stress update from the grid velocity remapped from the new particle
-   * momenta (with contact and walls again).
+   * momenta (with contact and walls again). USL: as MUSL, but the stress
+   * update from v^{n+1} itself, the constrained grid velocity that moved
+   * the particles; then the strain and the motion see the same
+   * constraints, and a reaction does no work on the strain (with USF the
+   * constraints on v^n and on v^L differ, and a grain resting on a wall
+   * under gravity slowly gains energy).
    *
    * The FLIP increment is measured from the uncorrected P2G velocity, so
    * that the particles receive the full contact impulse and the total

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// Whole runs of grainmpm from a test, judged by their energy.csv.
+
+#ifndef grainmpm_tests_energy_csv_h
+#define grainmpm_tests_energy_csv_h
+
+#include <grainmpm/simulator.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+/** The columns of an energy.csv, by name without the unit. */
+inline std::map<std::string, std::vector<double>>
+read_energy(const std::string &directory)
+{
+  std::ifstream            file(directory + "/energy.csv");
+  std::string              line;
+  std::vector<std::string> names;
+  std::getline(file, line);
+  {
+    std::istringstream header(line);
+    std::string        name;
+    while (std::getline(header, name, ','))
+      names.push_back(name.substr(0, name.find(" [")));
+  }
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(file, line))
+    {
+      std::istringstream row(line);
+      std::string        value;
+      for (unsigned int c = 0; std::getline(row, value, ','); ++c)
+        columns[names[c]].push_back(std::stod(value));
+    }
+  return columns;
+}
+
+
+
+/**
+ * Run @p text (2D) as NAME.prm in test mode without particle and grid
+ * output; return its energy.csv columns.
+ */
+inline std::map<std::string, std::vector<double>>
+run_case(const std::string &name, const std::string &text)
+{
+  std::ofstream(name + ".prm")
+    << text << "\nsubsection Output\n  set Output directory = results-" << name
+    << "\n  set Test mode = true\n  set Write particles = false\n"
+    << "  set Write grid = false\nend\n";
+  grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
+  return read_energy("results-" + name);
+}
+
+#endif
