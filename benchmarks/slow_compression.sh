@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Copyright (C) 2026 by the grainmpm authors
+#
+# The slow compression of 30 disks by a rigid platen (prm/slow_compression_
+# implicit.prm and prm/slow_compression_explicit.prm) to t = 1, frictionless
+# and with Coulomb friction 0.3: implicit theta = 1/2 at CFL 2.5, explicit
+# at CFL 0.25 with Stress update = USL (the shipped explicit case) and with
+# the default USF. Prints the platen work W, the end energy E and the ledger
+# in units of W, the explicit platen work relative to the implicit one, and
+# the platen force curves F(t) = dW/dt / 0.037 averaged over windows of
+# 0.1. Not a test: it prints figures (about 10 minutes).
+#
+# Usage: benchmarks/slow_compression.sh [build directory=build]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+grainmpm=$(realpath "$build/source/grainmpm")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# shellcheck source=common/run_case.sh
+source benchmarks/common/run_case.sh
+
+for friction in 0 0.3; do
+  if [ "$friction" = 0 ]; then
+    contact="subsection Contact\n  set Contact model = frictionless\nend"
+  else
+    contact="subsection Contact\n  set Contact model = Coulomb friction\n  set Friction coefficient = $friction\nend"
+  fi
+  run "implicit_$friction" slow_compression_implicit "$contact"
+  run "usl_$friction" slow_compression_explicit "$contact"
+  run "usf_$friction" slow_compression_explicit \
+    "$contact\nsubsection Time stepping\n  set Stress update = USF\nend"
+done
+
+python3 - "$work" <<'PYTHON'
+import csv, sys
+work = sys.argv[1]
+speed = 0.037
+
+def columns(name):
+    rows = list(csv.reader(open(f"{work}/{name}/energy.csv")))
+    header = [h.split(" [")[0] for h in rows[0]]
+    return {h: [float(r[i]) for r in rows[1:]] for i, h in enumerate(header)}
+
+def at(c, key, t):
+    i = min(range(len(c["time"])), key=lambda i: abs(c["time"][i] - t))
+    return c[key][i]
+
+times = [0.1 * k for k in range(1, 11)]
+for friction in ["0", "0.3"]:
+    runs = {s: columns(f"{s}_{friction}") for s in ["implicit", "usl", "usf"]}
+    W_implicit = runs["implicit"]["boundary_work"][-1]
+    print(f"\nfriction coefficient {friction}\n")
+    print("| scheme | W(1) | W / W_implicit | E(1) / W | friction work / W | transfers / W | balance / W |")
+    print("|---|---|---|---|---|---|---|")
+    for s, label in [("implicit", "implicit, CFL 2.5"), ("usl", "explicit USL, CFL 0.25"),
+                     ("usf", "explicit USF, CFL 0.25")]:
+        c = runs[s]
+        W = c["boundary_work"][-1]
+        print(f"| {label} | {W:.4g} | {W / W_implicit:.3f} | {c['total_energy'][-1] / W:.3f} "
+              f"| {c['friction_work'][-1] / W:.3f} | {c['transfer_work'][-1] / W:.3f} "
+              f"| {c['balance_residual'][-1] / W:.3f} |")
+    print("\nplaten force F = dW/dt / v over (t - 0.1, t]:\n")
+    print("| t | " + " | ".join(f"{t:.1f}" for t in times) + " |")
+    print("|---|" + "---|" * len(times))
+    for s in ["implicit", "usl", "usf"]:
+        c = runs[s]
+        forces = [(at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)) / (0.1 * speed)
+                  for t in times]
+        print(f"| {s} | " + " | ".join(f"{f:.4f}" for f in forces) + " |")
+PYTHON
