@@ -14,15 +14,8 @@
 # baseline for the spurious elastic energy. Not a test: it prints figures (about 2 minutes).
 #
 # Usage: benchmarks/implicit_table.sh [build directory=build]
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build=${1:-build}
-grainmpm=$(realpath "$build/source/grainmpm")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
 # shellcheck source=common/run_case.sh
-source benchmarks/common/run_case.sh
+source "$(dirname "$0")/common/run_case.sh" "$@"
 
 echo "| case | CFL | preconditioner | steps | Newton/step | GMRES/Newton | residual evaluations/step | rejected | E_total(end)/E0 | E_el(end)/E0 | grid step share | transfer share | |v_x| in flights 1-5 |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"

@@ -12,15 +12,8 @@
 # minutes on one core).
 #
 # Usage: benchmarks/results_table.sh [build directory=build]
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build=${1:-build}
-grainmpm=$(realpath "$build/source/grainmpm")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
 # shellcheck source=common/run_case.sh
-source benchmarks/common/run_case.sh
+source "$(dirname "$0")/common/run_case.sh" "$@"
 
 # ledger NAME: the ledger line of the summary, without its label.
 ledger() {

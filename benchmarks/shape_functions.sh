@@ -13,12 +13,8 @@
 #
 # Usage: bash benchmarks/shape_functions.sh [build directory=build]
 
-set -e
-build=${1:-build}
-grainmpm=$(cd "$build" && pwd)/source/grainmpm
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-source benchmarks/common/run_case.sh
+# shellcheck source=common/run_case.sh
+source "$(dirname "$0")/common/run_case.sh" "$@"
 
 echo "Implicit theta = 1/2, CFL 2.5. Impact: 1 - E(end)/E(0) in % after one wall impact of the single grain (t = 0.45)"
 echo "on 25 to 200 cells; E(2)/E(0) of the shipped single grain (50 cells), E(end)/E(0) of the shipped two disks (20 cells);"

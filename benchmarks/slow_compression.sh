@@ -12,15 +12,8 @@
 # 0.1. Not a test: it prints figures (about 10 minutes).
 #
 # Usage: benchmarks/slow_compression.sh [build directory=build]
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build=${1:-build}
-grainmpm=$(realpath "$build/source/grainmpm")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
 # shellcheck source=common/run_case.sh
-source benchmarks/common/run_case.sh
+source "$(dirname "$0")/common/run_case.sh" "$@"
 
 for friction in 0 0.3; do
   if [ "$friction" = 0 ]; then

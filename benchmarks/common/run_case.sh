@@ -1,9 +1,18 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
 #
-# Shell functions of the benchmark scripts that run shipped cases; source
-# it with $grainmpm (the executable) and $work (a scratch directory) set,
-# from the top of the repository.
+# The start of the benchmark scripts that run shipped cases, and their
+# shell functions. Source it with the script's arguments ([build
+# directory=build]): it goes to the top of the repository and sets
+# $grainmpm (the executable) and $work (a scratch directory, removed on
+# exit).
+
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+build=${1:-build}
+grainmpm=$(realpath "$build/source/grainmpm")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
 
 # run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text.
 run() {
