@@ -11,6 +11,7 @@
 #include <deal.II/base/patterns.h>
 
 #include <limits>
+#include <sstream>
 
 namespace grainmpm
 {
@@ -76,14 +77,17 @@ namespace grainmpm
     prm.add_parameter("Time step",
                       time_step,
                       "A fixed time step. If zero, the step is chosen every "
-                      "step from the CFL number. Units: time.",
+                      "step from the CFL number. For the explicit leapfrog "
+                      "at most h / c (see CFL number). Units: time.",
                       Patterns::Double(0.));
     prm.add_parameter(
       "CFL number",
       cfl_number,
       "Used when Time step is zero: dt = CFL h / (c + max |v_p|) with h the "
       "smallest cell size, c the largest dilatational wave speed of the "
-      "materials in use and v_p the particle velocities. Dimensionless.",
+      "materials in use and v_p the particle velocities. At most 1 for the "
+      "explicit leapfrog (its stability limit; 0.25 is typical). "
+      "Dimensionless.",
       Patterns::Double(0., 10.));
     prm.add_parameter(
       "Particle velocity update",
@@ -179,6 +183,17 @@ namespace grainmpm
     if (time_step == 0. && cfl_number == 0.)
       throw InputError("Time stepping/CFL number",
                        "must be positive when Time step is zero.");
+    if (scheme == TimeSteppingScheme::explicit_leapfrog && time_step == 0. &&
+        cfl_number > 1.)
+      {
+        std::ostringstream entry;
+        entry << "Time stepping/CFL number = " << cfl_number;
+        throw InputError(entry.str(),
+                         "is above 1, the stability limit of the explicit "
+                         "leapfrog: its energy grows without bound. Use at "
+                         "most 1 (0.25 is typical), or Scheme = implicit "
+                         "theta for larger steps.");
+      }
   }
 
 

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/base/input_error.h>
 #include <grainmpm/time_integration/time_step_controller.h>
 
 #include <algorithm>
+#include <sstream>
 
 namespace grainmpm
 {
@@ -16,7 +18,23 @@ namespace grainmpm
     , max_newton_iterations(max_newton_iterations)
     , minimum_cell_size(minimum_cell_size)
     , wave_speed(wave_speed)
-  {}
+  {
+    const double limit = minimum_cell_size / wave_speed;
+    if (parameters.scheme == TimeSteppingScheme::explicit_leapfrog &&
+        parameters.time_step > limit)
+      {
+        std::ostringstream entry, message;
+        entry << "Time stepping/Time step = " << parameters.time_step;
+        message
+          << "is above the stability limit of the explicit leapfrog, h / c = "
+          << limit
+          << " (h the smallest cell size, c the largest dilatational wave "
+             "speed of the materials): its energy grows without bound. Use "
+             "at most that (a quarter of it is typical), Time step = 0 with "
+             "a CFL number, or Scheme = implicit theta.";
+        throw InputError(entry.str(), message.str());
+      }
+  }
 
 
 
