@@ -6,6 +6,8 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <cmath>
+
 namespace grainmpm
 {
   std::string
@@ -25,16 +27,20 @@ namespace grainmpm
     for (const auto &item :
          dealii::Utilities::split_string_list(text, separator))
       {
+        const std::string quoted =
+          "'" + item + "'" + (item == text ? "" : " in '" + text + "'");
+        double number = 0.;
         try
           {
-            numbers.push_back(dealii::Utilities::string_to_double(item));
+            number = dealii::Utilities::string_to_double(item);
           }
         catch (...)
           {
-            throw InputError(entry,
-                             "'" + item + "' in '" + text +
-                               "' is not a number.");
+            throw InputError(entry, quoted + " is not a number.");
           }
+        if (!std::isfinite(number))
+          throw InputError(entry, quoted + " is not a finite number.");
+        numbers.push_back(number);
       }
     return numbers;
   }

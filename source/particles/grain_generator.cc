@@ -188,6 +188,7 @@ namespace grainmpm
 
     std::vector<double> properties(Layout::n_properties, 0.);
     Vector<double>      velocity(dim);
+    std::string         not_finite; // the first one on this rank
     for (std::size_t c = 0; c < candidates.size(); ++c)
       {
         const Candidate            &candidate = candidates[c];
@@ -213,6 +214,19 @@ namespace grainmpm
         properties[Layout::grain]          = candidate.grain;
         initial_velocities[candidate.grain]->vector_value(point, velocity);
         for (unsigned int d = 0; d < dim; ++d)
+          if (!std::isfinite(velocity[d]) && not_finite.empty())
+            {
+              std::ostringstream message;
+              message << "component " << d + 1 << " is " << velocity[d]
+                      << " at the point (" << point
+                      << "): the initial velocity must be finite everywhere "
+                         "in the grain.";
+              not_finite = InputError(grain.source + "/Initial velocity = " +
+                                        grain.initial_velocity,
+                                      message.str())
+                             .what();
+            }
+        for (unsigned int d = 0; d < dim; ++d)
           {
             properties[Layout::velocity + d] = velocity[d];
             properties[Layout::deformation_gradient + dim * d + d] = 1.;
@@ -222,6 +236,7 @@ namespace grainmpm
         info[candidate.grain].mass += density * volume;
         info[candidate.grain].n_particles += 1;
       }
+    throw_on_all_ranks(not_finite, communicator);
     // The points were inserted grain by grain: store them cell by cell (the
     // handler sorts its property memory in the order of its cells), as the
     // transfers visit them. Measured on a 1M-point block on a refined grid:

@@ -21,7 +21,7 @@ namespace grainmpm
 
   /**
    * The numbers of the @p separator-separated list @p text. Throws an
-   * InputError naming @p entry if an item is not a number.
+   * InputError naming @p entry if an item is not a finite number.
    */
   std::vector<double>
   parse_numbers(const std::string &text,
