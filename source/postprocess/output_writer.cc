@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/postprocess/output_writer.h>
 
@@ -151,12 +152,50 @@ namespace grainmpm
 
 
 
+    /**
+     * Write the record file @p filename on rank 0 of @p communicator: to a
+     * temporary name, renamed when complete, so that a run stopped at any
+     * moment leaves the previous record intact. A failed write is an error
+     * on every rank, naming the file. Collective.
+     */
     void
     write_pvd(const std::string                                 &filename,
-              const std::vector<std::pair<double, std::string>> &records)
+              const std::vector<std::pair<double, std::string>> &records,
+              const MPI_Comm                                     communicator)
     {
-      std::ofstream out(filename);
-      DataOutBase::write_pvd_record(out, records);
+      std::string error;
+      if (Utilities::MPI::this_mpi_process(communicator) == 0)
+        {
+          const std::string temporary = filename + ".tmp";
+          bool              written   = false;
+          try
+            {
+              std::ofstream out(temporary);
+              if (out)
+                {
+                  // Throws ExcIO if the stream fails while writing.
+                  DataOutBase::write_pvd_record(out, records);
+                  out.close();
+                  written = !out.fail();
+                }
+            }
+          catch (const ExceptionBase &)
+            {}
+          if (!written)
+            error = "could not write " + temporary +
+                    " (disk full, or no permission?); " + filename +
+                    " is left as it was.";
+          std::error_code code;
+          if (error.empty())
+            std::filesystem::rename(temporary, filename, code);
+          if (code)
+            error = "could not rename " + temporary + " to " + filename + ": " +
+                    code.message() + ".";
+        }
+      throw_on_all_ranks(error.empty() ?
+                           error :
+                           InputError("Output/Output directory", error).what(),
+                         communicator);
     }
   } // namespace
 
@@ -208,9 +247,9 @@ namespace grainmpm
       5,
       8);
     particle_records.emplace_back(time, "particles/" + name);
-    if (Utilities::MPI::this_mpi_process(
-          grid.get_triangulation().get_communicator()) == 0)
-      write_pvd(parameters.directory + "/particles.pvd", particle_records);
+    write_pvd(parameters.directory + "/particles.pvd",
+              particle_records,
+              grid.get_triangulation().get_communicator());
   }
 
 
@@ -301,9 +340,9 @@ namespace grainmpm
       5,
       8);
     grid_records.emplace_back(time, "grid/" + name);
-    if (Utilities::MPI::this_mpi_process(
-          grid.get_triangulation().get_communicator()) == 0)
-      write_pvd(parameters.directory + "/grid.pvd", grid_records);
+    write_pvd(parameters.directory + "/grid.pvd",
+              grid_records,
+              grid.get_triangulation().get_communicator());
   }
 
 
