@@ -355,6 +355,10 @@ namespace grainmpm
       output_writer->write_grid(*stepper, time, index);
     if (parameters.output.write_grain_history)
       grain_history->write(particle_handler, time);
+    // The histories are written on rank 0 every step (energy) or output
+    // (grains): a failed write stops every rank here.
+    energy_history->check_written();
+    grain_history->check_written();
 
     const EnergySummary<dim> &energies = summary.get_current_energies();
     pcout << "step " << std::setw(6) << step << "  t = " << std::scientific

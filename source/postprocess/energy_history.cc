@@ -27,29 +27,36 @@ namespace grainmpm
     , materials(materials)
     , communicator(communicator)
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    if (!open_history_file(file, filename, resume_length))
-      return;
     const std::string energy  = (dim == 2 ? "M L^2/T^2 per L" : "M L^2/T^2");
     const std::string impulse = (dim == 2 ? "M L/T per L" : "M L/T");
-    file << "step,time [T],dt [T],kinetic_energy [" << energy
-         << "],elastic_energy [" << energy << "],total_energy [" << energy
-         << "]";
-    // The total is kinetic + elastic + gravity_potential (further right).
+    open_history(file, filename, resume_length, communicator, [&]() {
+      file << "step,time [T],dt [T],kinetic_energy [" << energy
+           << "],elastic_energy [" << energy << "],total_energy [" << energy
+           << "]";
+      // The total is kinetic + elastic + gravity_potential (further right).
 
-    for (unsigned int d = 0; d < dim; ++d)
-      file << ",momentum_"
-           << "xyz"[d] << " [" << impulse << "]";
-    file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
-            "linear_iterations [1],residual_evaluations [1],"
-            "residual_rms [1],rejected_steps [1],grid_energy_change ["
-         << energy << "],transfer_energy_change [" << energy
-         << "],gravity_potential [" << energy << "],plastic_work [" << energy
-         << "],friction_work [" << energy << "],boundary_work [" << energy
-         << "],transfer_work [" << energy << "],balance_residual [" << energy
-         << "]\n"
-         << std::flush;
+      for (unsigned int d = 0; d < dim; ++d)
+        file << ",momentum_"
+             << "xyz"[d] << " [" << impulse << "]";
+      file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
+              "linear_iterations [1],residual_evaluations [1],"
+              "residual_rms [1],rejected_steps [1],grid_energy_change ["
+           << energy << "],transfer_energy_change [" << energy
+           << "],gravity_potential [" << energy << "],plastic_work [" << energy
+           << "],friction_work [" << energy << "],boundary_work [" << energy
+           << "],transfer_work [" << energy << "],balance_residual [" << energy
+           << "]\n"
+           << std::flush;
+    });
+  }
+
+
+
+  template <int dim>
+  void
+  EnergyHistory<dim>::check_written() const
+  {
+    check_history_file(file, filename, communicator);
   }
 
 

@@ -22,23 +22,30 @@ namespace grainmpm
     , communicator(communicator)
     , filename(filename)
   {
-    if (Utilities::MPI::this_mpi_process(communicator) != 0)
-      return;
-    if (!open_history_file(file, filename, resume_length))
-      return;
-    file << "time [T],grain [1],mass [M]";
-    for (unsigned int d = 0; d < dim; ++d)
-      file << ",centre_"
-           << "xyz"[d] << " [L]";
-    for (unsigned int d = 0; d < dim; ++d)
-      file << ",velocity_"
-           << "xyz"[d] << " [L/T]";
-    if (dim == 2)
-      file << ",angular_velocity_z [1/T]";
-    else
-      file << ",angular_velocity_x [1/T],angular_velocity_y "
-              "[1/T],angular_velocity_z [1/T]";
-    file << ",max_distance [L]\n" << std::flush;
+    open_history(file, filename, resume_length, communicator, [&]() {
+      file << "time [T],grain [1],mass [M]";
+      for (unsigned int d = 0; d < dim; ++d)
+        file << ",centre_"
+             << "xyz"[d] << " [L]";
+      for (unsigned int d = 0; d < dim; ++d)
+        file << ",velocity_"
+             << "xyz"[d] << " [L/T]";
+      if (dim == 2)
+        file << ",angular_velocity_z [1/T]";
+      else
+        file << ",angular_velocity_x [1/T],angular_velocity_y "
+                "[1/T],angular_velocity_z [1/T]";
+      file << ",max_distance [L]\n" << std::flush;
+    });
+  }
+
+
+
+  template <int dim>
+  void
+  GrainHistory<dim>::check_written() const
+  {
+    check_history_file(file, filename, communicator);
   }
 
 

@@ -182,15 +182,15 @@ namespace grainmpm
           catch (const ExceptionBase &)
             {}
           if (!written)
-            error = "could not write " + temporary +
-                    " (disk full, or no permission?); " + filename +
-                    " is left as it was.";
+            error = "could not write '" + temporary +
+                    "' (disk full, or no permission?); '" + filename +
+                    "' is left as it was.";
           std::error_code code;
           if (error.empty())
             std::filesystem::rename(temporary, filename, code);
           if (code)
-            error = "could not rename " + temporary + " to " + filename + ": " +
-                    code.message() + ".";
+            error = "could not rename '" + temporary + "' to '" + filename +
+                    "': " + code.message() + ".";
         }
       throw_on_all_ranks(error.empty() ?
                            error :

@@ -142,6 +142,13 @@ namespace grainmpm
     EnergySummary<dim>
     compute(const Particles::ParticleHandler<dim> &particle_handler);
 
+    /**
+     * Stop every rank with a message naming the file if a write has failed.
+     * Collective.
+     */
+    void
+    check_written() const;
+
     /** Append one row. */
     void
     write_row(const unsigned int        step,

@@ -58,6 +58,13 @@ namespace grainmpm
     std::vector<GrainMotion<dim>>
     compute(const Particles::ParticleHandler<dim> &particle_handler) const;
 
+    /**
+     * Stop every rank with a message naming the file if a write has failed.
+     * Collective.
+     */
+    void
+    check_written() const;
+
     /** Append the rows of time @p time. */
     void
     write(const Particles::ParticleHandler<dim> &particle_handler,

@@ -43,6 +43,58 @@ namespace grainmpm
                        "cannot write the file '" + filename + "'.");
     return resume_length == 0;
   }
+
+
+
+  /**
+   * Throw on every rank of @p communicator if a write to the history
+   * @p file (open on rank 0 only) has failed, naming @p filename.
+   * Collective.
+   */
+  inline void
+  check_history_file(const std::ofstream &file,
+                     const std::string   &filename,
+                     const MPI_Comm       communicator)
+  {
+    std::string error;
+    if (file.is_open() && !file)
+      error = InputError("Output/Output directory",
+                         "could not write '" + filename +
+                           "' (disk full, or no permission?); its last row "
+                           "may be incomplete.")
+                .what();
+    throw_on_all_ranks(error, communicator);
+  }
+
+
+
+  /**
+   * open_history_file() on rank 0 of @p communicator, with
+   * @p write_header() for a fresh file, then check_history_file(): an
+   * error stops every rank. Collective.
+   */
+  template <typename WriteHeader>
+  inline void
+  open_history(std::ofstream       &file,
+               const std::string   &filename,
+               const std::uintmax_t resume_length,
+               const MPI_Comm       communicator,
+               WriteHeader        &&write_header)
+  {
+    std::string error;
+    if (dealii::Utilities::MPI::this_mpi_process(communicator) == 0)
+      try
+        {
+          if (open_history_file(file, filename, resume_length))
+            write_header();
+        }
+      catch (const InputError &exception)
+        {
+          error = exception.what();
+        }
+    throw_on_all_ranks(error, communicator);
+    check_history_file(file, filename, communicator);
+  }
 } // namespace grainmpm
 
 #endif
