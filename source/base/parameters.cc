@@ -10,6 +10,8 @@
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -719,9 +721,51 @@ namespace grainmpm
 
 
 
+  namespace
+  {
+    /**
+     * Follow the include lines of @p filename (the files @p chain includes
+     * it through) and throw an InputError if a file includes itself.
+     */
+    void
+    check_includes(const std::string       &filename,
+                   std::vector<std::string> chain = {})
+    {
+      const std::string name =
+        std::filesystem::weakly_canonical(filename).string();
+      if (std::find(chain.begin(), chain.end(), name) != chain.end())
+        {
+          // File names without their directories: the chain reads well
+          // and does not depend on where the files are.
+          const auto file_name = [](const std::string &path) {
+            return "'" + std::filesystem::path(path).filename().string() + "'";
+          };
+          std::string through;
+          for (const auto &file : chain)
+            through += file_name(file) + " -> ";
+          throw InputError("",
+                           "the parameter file " + file_name(name) +
+                             " includes itself: " + through + file_name(name) +
+                             ". Remove the include line.");
+        }
+      chain.push_back(name);
+      std::ifstream in(filename);
+      std::string   line;
+      while (std::getline(in, line))
+        {
+          line = Utilities::trim(strip_comment(line));
+          if (line.rfind("include ", 0) == 0 || line.rfind("INCLUDE ", 0) == 0)
+            check_includes(Utilities::trim(line.substr(8)), chain);
+        }
+    }
+  } // namespace
+
+
+
   unsigned int
   read_dimension(const std::string &filename)
   {
+    check_includes(filename);
     ParameterHandler prm;
     prm.declare_entry("Dimension",
                       "2",
