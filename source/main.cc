@@ -7,6 +7,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
 #include <grainmpm/simulator.h>
 
@@ -54,6 +55,27 @@ namespace
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
     add_random_packing(parameters);
+
+    // The checks of a run before its first step: the grains on the grid
+    // (overlaps, grains outside the grid, function expressions and their
+    // values) and the time step.
+    BackgroundGrid<dim>             grid(parameters.grid, MPI_COMM_WORLD);
+    Particles::ParticleHandler<dim> particle_handler(
+      grid.get_triangulation(),
+      grid.get_mapping(),
+      MaterialPointLayout<dim>::n_properties);
+    std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
+    for (const auto &material : parameters.materials)
+      materials.emplace_back(create_constitutive_model<dim>(
+        material, parameters.physics.two_dimensional_model));
+    const std::vector<GrainInfo<dim>> grains =
+      GrainGenerator<dim>(parameters).generate(grid, particle_handler);
+    const TimeStepController controller(
+      parameters.time_stepping,
+      parameters.nonlinear_solver.max_iterations,
+      grid.minimum_cell_size(),
+      largest_wave_speed(grains, materials));
+
     std::cout << filename << ": " << dim << "D, " << parameters.materials.size()
               << " materials, " << parameters.grains.size()
               << " grains: parameters OK" << std::endl;

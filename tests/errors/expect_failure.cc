@@ -4,7 +4,8 @@
 // Test driver for runs that must fail: runs grainmpm on the given .prm and
 // prints its exit code; succeeds only if grainmpm exited with code 1, so a
 // test checks both the message (in .output) and the exit code. A line
-// "# MPI ranks: N" in the .prm runs grainmpm on N ranks through mpiexec;
+// "# MPI ranks: N" in the .prm runs grainmpm on N ranks through mpiexec,
+// a line "# Check parameters only" runs grainmpm --check-parameters;
 // Open MPI's own report of the failed job (between lines of dashes, with
 // process ids) is left out of the output.
 
@@ -20,15 +21,19 @@ main(int argc, char *argv[])
 {
   if (argc != 2)
     return 2;
-  unsigned int n_ranks = 1;
+  unsigned int n_ranks    = 1;
+  bool         check_only = false;
   {
     std::ifstream     prm(argv[1]);
     const std::string marker = "# MPI ranks: ";
     for (std::string line; std::getline(prm, line);)
       if (line.rfind(marker, 0) == 0)
         n_ranks = std::stoi(line.substr(marker.size()));
+      else if (line == "# Check parameters only")
+        check_only = true;
   }
-  std::string command = std::string(GRAINMPM_EXECUTABLE) + " " + argv[1];
+  std::string command = std::string(GRAINMPM_EXECUTABLE) +
+                        (check_only ? " --check-parameters " : " ") + argv[1];
   if (n_ranks > 1)
     command = std::string(GRAINMPM_MPIEXEC) + " -n " + std::to_string(n_ranks) +
               " --allow-run-as-root --oversubscribe " + command;
