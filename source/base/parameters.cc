@@ -343,6 +343,16 @@ namespace grainmpm
                       "the same parameter file otherwise; energy.csv and "
                       "grains.csv are cut back to the checkpoint and "
                       "continued. Empty: start at t = 0.");
+    prm.add_parameter(
+      "Replace other checkpoints",
+      replace_other_checkpoints,
+      "A fresh run (Resume from empty) that writes checkpoints refuses to "
+      "start in an output directory that already holds checkpoints, which "
+      "belong to another run: they would be replaced or deleted as old. "
+      "true: start anyway; those checkpoints are kept, except one that "
+      "this run's checkpoint of the same step replaces, and only this "
+      "run's own checkpoints are deleted as old.",
+      Patterns::Bool());
     prm.leave_subsection();
   }
 

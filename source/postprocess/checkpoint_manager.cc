@@ -32,20 +32,42 @@ namespace grainmpm
           std::make_unique<boost::archive::binary_iarchive>(resume_stream);
       }
 
-    // Checkpoints already in the output directory count towards the ones
-    // kept (a resumed run continues the list of the run it resumes).
+    // Checkpoints already in the output directory: a resumed run continues
+    // the list of the run it resumes (they count towards the ones kept); a
+    // fresh run that writes checkpoints does not touch another run's
+    // unless told to.
+    std::string error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0 &&
         std::filesystem::is_directory(directory))
       {
+        std::vector<std::string> found;
         for (const auto &entry : std::filesystem::directory_iterator(directory))
           {
             const std::string name = entry.path().filename().string();
             if (entry.is_directory() && name.rfind("checkpoint-", 0) == 0 &&
                 name.find(".tmp") == std::string::npos)
-              checkpoints.push_back(entry.path().string());
+              found.push_back(entry.path().string());
           }
-        std::sort(checkpoints.begin(), checkpoints.end());
+        std::sort(found.begin(), found.end());
+        const bool writes =
+          parameters.steps_between > 0 || parameters.minutes_between > 0.;
+        if (!resume.empty())
+          checkpoints = found;
+        else if (writes && !found.empty() &&
+                 !parameters.replace_other_checkpoints)
+          error =
+            InputError("Checkpoint/Replace other checkpoints = false",
+                       "the output directory '" + directory + "' holds " +
+                         std::to_string(found.size()) +
+                         " checkpoint(s) of another run (the newest is '" +
+                         found.back() +
+                         "'), which this run's checkpoints would replace or "
+                         "delete. Resume from one of them (Checkpoint/Resume "
+                         "from), choose another Output/Output directory, or "
+                         "set Replace other checkpoints = true.")
+              .what();
       }
+    throw_on_all_ranks(error, communicator);
   }
 
 

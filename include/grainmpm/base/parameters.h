@@ -388,6 +388,7 @@ namespace grainmpm
     double       minutes_between = 0.;
     unsigned int n_kept          = 2;
     std::string  resume_from;
+    bool         replace_other_checkpoints = false;
 
     void
     declare(ParameterHandler &prm);
