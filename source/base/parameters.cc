@@ -787,6 +787,29 @@ namespace grainmpm
 
 
 
+  std::string
+  expand_includes(const std::string &filename)
+  {
+    std::ifstream in(filename);
+    std::string   text, line;
+    while (std::getline(in, line))
+      {
+        const std::string command = Utilities::trim(strip_comment(line));
+        if (command.rfind("include ", 0) == 0 ||
+            command.rfind("INCLUDE ", 0) == 0)
+          {
+            const std::string included = Utilities::trim(command.substr(8));
+            text += "# " + line + " (expanded below)\n" +
+                    expand_includes(included) + "# end of " + included + "\n";
+          }
+        else
+          text += line + '\n';
+      }
+    return text;
+  }
+
+
+
   template struct BackgroundGridParameters<2>;
   template struct BackgroundGridParameters<3>;
   template struct PhysicsParameters<2>;

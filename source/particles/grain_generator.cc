@@ -10,6 +10,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 namespace grainmpm
@@ -21,6 +22,18 @@ namespace grainmpm
                         const std::string &entry)
   {
     auto function = std::make_shared<FunctionParser<dim>>(dim);
+    // deal.II prints muparser's own report of a syntax error to std::cerr
+    // before it throws: keep it off the screen, the message below says it.
+    std::ostringstream parser_report;
+    std::streambuf    *screen = std::cerr.rdbuf(parser_report.rdbuf());
+    const struct Restore
+    {
+      std::streambuf *screen;
+      ~Restore()
+      {
+        std::cerr.rdbuf(screen);
+      }
+    } restore{screen};
     try
       {
         std::string variables = FunctionParser<dim>::default_variable_names();

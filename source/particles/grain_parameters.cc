@@ -9,6 +9,8 @@
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
 
+#include <cmath>
+
 namespace grainmpm
 {
   // -------------------------------------------------------------- grains
@@ -113,14 +115,21 @@ namespace grainmpm
                                                 "sphere or box") +
                          ").");
 
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!std::isfinite(centre[d]))
+        throw InputError(prefix + "Centre",
+                         "coordinate " + std::to_string(d + 1) +
+                           " is not a finite number.");
+    if (!std::isfinite(rotation))
+      throw InputError(prefix + "Rotation", "must be a finite number.");
     if ((shape == GrainShape::disk || shape == GrainShape::sphere) &&
-        !(radius > 0.))
-      throw InputError(prefix + "Radius", "must be positive.");
+        !(radius > 0. && std::isfinite(radius)))
+      throw InputError(prefix + "Radius", "must be positive and finite.");
     if (shape == GrainShape::rectangle || shape == GrainShape::box)
       for (unsigned int d = 0; d < dim; ++d)
-        if (!(size[d] > 0.))
+        if (!(size[d] > 0. && std::isfinite(size[d])))
           throw InputError(prefix + "Size",
-                           "every edge length must be positive.");
+                           "every edge length must be positive and finite.");
 
     vertices.clear();
     if (shape == GrainShape::polygon)
@@ -141,6 +150,36 @@ namespace grainmpm
         if (vertices.size() < 3)
           throw InputError(prefix + "Vertices = " + vertices_text,
                            "a polygon needs at least three vertices.");
+        // A simple polygon: no two edges that do not share a vertex cross
+        // (a bow tie has no inside and outside the generator can tell).
+        const unsigned int n     = vertices.size();
+        const auto         cross = [](const Point<dim> &a,
+                              const Point<dim> &b,
+                              const Point<dim> &c) {
+          return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+        };
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = i + 2; j < n; ++j)
+            {
+              if (i == 0 && j == n - 1)
+                continue;
+              const Point<dim> &p = vertices[i], &q = vertices[(i + 1) % n];
+              const Point<dim> &r = vertices[j], &t = vertices[(j + 1) % n];
+              if (cross(p, q, r) * cross(p, q, t) < 0. &&
+                  cross(r, t, p) * cross(r, t, q) < 0.)
+                throw InputError(prefix + "Vertices = " + vertices_text,
+                                 "the edges from vertex " +
+                                   std::to_string(i + 1) + " and from vertex " +
+                                   std::to_string(j + 1) +
+                                   " cross: the polygon intersects itself. "
+                                   "List the vertices in order around it.");
+            }
+        double area = 0.;
+        for (unsigned int i = 0; i < n; ++i)
+          area += cross(Point<dim>(), vertices[i], vertices[(i + 1) % n]);
+        if (!(std::abs(area) > 0.))
+          throw InputError(prefix + "Vertices = " + vertices_text,
+                           "the polygon has no area.");
       }
 
     if (Utilities::split_string_list(initial_velocity, ';').size() != dim)

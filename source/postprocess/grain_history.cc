@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <iomanip>
+#include <sstream>
 
 namespace grainmpm
 {
@@ -174,19 +175,25 @@ namespace grainmpm
     const auto motions = compute(particle_handler);
     if (!file.is_open())
       return;
-    file << std::setprecision(12);
+    // The rows of this time in one write: a run killed meanwhile leaves
+    // whole rows.
+    std::ostringstream rows;
+    rows << std::setprecision(12);
     for (unsigned int g = 0; g < n_grains; ++g)
       {
-        file << time << ',' << g + 1 << ',' << motions[g].mass;
+        rows << time << ',' << g + 1 << ',' << motions[g].mass;
         for (unsigned int d = 0; d < dim; ++d)
-          file << ',' << motions[g].centre_of_mass[d];
+          rows << ',' << motions[g].centre_of_mass[d];
         for (unsigned int d = 0; d < dim; ++d)
-          file << ',' << motions[g].velocity[d];
+          rows << ',' << motions[g].velocity[d];
         for (unsigned int d = 0; d < (dim == 2 ? 1 : 3); ++d)
-          file << ',' << motions[g].angular_velocity[d];
-        file << ',' << motions[g].max_distance << '\n';
+          rows << ',' << motions[g].angular_velocity[d];
+        rows << ',' << motions[g].max_distance << '\n';
       }
     file << std::flush;
+    const std::string text = rows.str();
+    file.write(text.data(), text.size());
+    file.flush();
   }
 
 

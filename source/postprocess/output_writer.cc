@@ -213,15 +213,25 @@ namespace grainmpm
   {
     vector_dof_handler.distribute_dofs(vector_fe);
     const MPI_Comm communicator = grid.get_triangulation().get_communicator();
+    std::string    error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        if (parameters.write_particles)
-          std::filesystem::create_directories(parameters.directory +
-                                              "/particles");
-        if (parameters.write_grid)
-          std::filesystem::create_directories(parameters.directory + "/grid");
-      }
-    MPI_Barrier(communicator);
+      for (const std::string name : {"particles", "grid"})
+        if (name == "particles" ? parameters.write_particles :
+                                  parameters.write_grid)
+          {
+            const std::string path = parameters.directory + "/" + name;
+            std::error_code   code;
+            std::filesystem::create_directories(path, code);
+            if (code || !std::filesystem::is_directory(path))
+              error =
+                InputError("Output/Output directory = " + parameters.directory,
+                           "cannot create the directory '" + path + "' (" +
+                             (code ? code.message() :
+                                     std::string("a file has its name")) +
+                             ").")
+                  .what();
+          }
+    throw_on_all_ranks(error, communicator);
   }
 
 

@@ -34,6 +34,27 @@ namespace grainmpm
              "a CFL number, or Scheme = implicit theta.";
         throw InputError(entry.str(), message.str());
       }
+
+    // A run that cannot end: refused with the numbers instead of stepping
+    // for ever (the CFL step with the material at rest is an upper bound,
+    // so this is a lower bound of the number of steps).
+    const double step    = cfl_step(0.);
+    const double n_steps = parameters.end_time / step;
+    if (!(n_steps <= maximum_steps_to_end))
+      {
+        std::ostringstream entry, message;
+        if (parameters.time_step > 0.)
+          entry << "Time stepping/Time step = " << parameters.time_step;
+        else
+          entry << "Time stepping/CFL number = " << parameters.cfl_number;
+        message << "End time = " << parameters.end_time << " needs at least "
+                << n_steps << " steps of dt = " << step
+                << " (h = " << minimum_cell_size << ", c = " << wave_speed
+                << "), more than the " << maximum_steps_to_end
+                << " steps a run may take. Use a larger time step or a "
+                   "shorter End time.";
+        throw InputError(entry.str(), message.str());
+      }
   }
 
 

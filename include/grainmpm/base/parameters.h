@@ -491,6 +491,14 @@ namespace grainmpm
    */
   unsigned int
   read_dimension(const std::string &filename);
+
+  /**
+   * The text of the parameter file @p filename with each `include` line
+   * replaced by the text of the file it names (recursively), between
+   * comment lines that name it: a copy that runs from anywhere.
+   */
+  std::string
+  expand_includes(const std::string &filename);
 } // namespace grainmpm
 
 #endif

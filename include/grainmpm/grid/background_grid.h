@@ -170,6 +170,13 @@ namespace grainmpm
     boundary_condition(const unsigned int face) const;
 
   private:
+    /**
+     * Refuse (InputError on every rank) a grid that cannot fit in the
+     * memory of the machine, before making it. Collective.
+     */
+    void
+    check_memory(const MPI_Comm communicator) const;
+
     const BackgroundGridParameters<dim>      &parameters;
     parallel::distributed::Triangulation<dim> triangulation;
     /**

@@ -17,11 +17,15 @@ namespace grainmpm
    * half the step (down to `Minimum time step`), and a cut step grows back
    * by a factor 2 after `Steps before growth` easy steps (at most half the
    * Newton iterations allowed). Its state is written to checkpoints by
-   * serialize().
+   * serialize(). A case whose End time needs more than
+   * maximum_steps_to_end steps is refused when the controller is made.
    */
   class TimeStepController
   {
   public:
+    /** The most steps a run may need to reach its End time. */
+    static constexpr double maximum_steps_to_end = 1e9;
+
     /**
      * @p minimum_cell_size and @p wave_speed (the largest dilatational
      * wave speed) set the CFL step; @p max_newton_iterations tells an easy
