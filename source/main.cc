@@ -134,6 +134,14 @@ main(int argc, char *argv[])
       else
         run<3>(arguments[0], MPI_COMM_WORLD);
     }
+  catch (const RunStopped &stopped)
+    {
+      // SIGTERM or SIGINT: the run wrote its output (and checkpoint) and
+      // ends with the exit status of a process killed by the signal.
+      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::cerr << "\ngrainmpm: " << stopped.what() << std::endl;
+      return 128 + stopped.signal;
+    }
   catch (const InputError &error)
     {
       // Input errors are seen by every rank alike (the parameter file) or

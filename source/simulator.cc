@@ -13,13 +13,63 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
 namespace grainmpm
 {
+  namespace
+  {
+    /** The stop signal received (SIGTERM, SIGINT), or 0. */
+    volatile std::sig_atomic_t stop_signal = 0;
+
+    extern "C" void
+    record_stop_signal(int signal)
+    {
+      stop_signal = signal;
+      // A second one stops at once.
+      std::signal(signal, SIG_DFL);
+    }
+
+    /**
+     * While it lives, SIGTERM and SIGINT are recorded instead of killing
+     * the process: the time loop stops cleanly after the step.
+     */
+    class StopSignals
+    {
+    public:
+      StopSignals()
+      {
+        stop_signal        = 0;
+        previous_terminate = std::signal(SIGTERM, record_stop_signal);
+        previous_interrupt = std::signal(SIGINT, record_stop_signal);
+      }
+
+      ~StopSignals()
+      {
+        std::signal(SIGTERM, previous_terminate);
+        std::signal(SIGINT, previous_interrupt);
+      }
+
+      /** The signal received on any rank, or 0. Collective. */
+      static int
+      received(const MPI_Comm communicator)
+      {
+        return Utilities::MPI::max(static_cast<int>(stop_signal), communicator);
+      }
+
+    private:
+      void (*previous_terminate)(int);
+      void (*previous_interrupt)(int);
+    };
+  } // namespace
+
+
+
   template <int dim>
   Simulator<dim>::Simulator(const Parameters<dim>  &parameters,
                             const ParameterHandler &prm,
@@ -41,28 +91,53 @@ namespace grainmpm
     , schedule(parameters.output, parameters.checkpoint, communicator)
     , summary(implicit)
   {
-    // Record the inputs before anything can fail.
+    // Record the inputs before anything can fail: the input with its
+    // included files expanded (it can be run again as it is), the values
+    // of every parameter, the generated grains. Rank 0 writes; an error
+    // stops every rank.
     const std::string &directory = parameters.output.directory;
+    std::string        error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
-        std::filesystem::create_directories(directory);
-        std::filesystem::copy_file(
-          input_file,
-          directory + "/original.prm",
-          std::filesystem::copy_options::overwrite_existing);
-        std::ofstream used(directory + "/parameters.prm");
-        prm.print_parameters(used, ParameterHandler::PRM);
+        std::error_code code;
+        std::filesystem::create_directories(directory, code);
+        if (code || !std::filesystem::is_directory(directory))
+          error = InputError("Output/Output directory = " + directory,
+                             "cannot create this directory (" +
+                               (code ? code.message() :
+                                       std::string("a file has its name")) +
+                               "). Choose a directory you can write to.")
+                    .what();
+        const auto write =
+          [&](const std::string                         &name,
+              const std::function<void(std::ostream &)> &what) {
+            if (!error.empty())
+              return;
+            std::ofstream out(directory + "/" + name);
+            what(out);
+            out.close();
+            if (!out)
+              error = InputError("Output/Output directory = " + directory,
+                                 "cannot write the file '" + name +
+                                   "' in it (disk full, or no permission?).")
+                        .what();
+          };
+        write("original.prm",
+              [&](std::ostream &out) { out << expand_includes(input_file); });
+        write("parameters.prm", [&](std::ostream &out) {
+          prm.print_parameters(out, ParameterHandler::PRM);
+        });
         if (parameters.n_packed_grains > 0)
-          {
+          write("packing.csv", [&](std::ostream &out) {
             // The generated grains, to be read back as a Grain list file.
-            std::ofstream packing(directory + "/packing.csv");
             write_grain_list<dim>(
-              packing,
+              out,
               std::vector<GrainParameters<dim>>(parameters.grains.end() -
                                                   parameters.n_packed_grains,
                                                 parameters.grains.end()));
-          }
+          });
       }
+    throw_on_all_ranks(error, communicator);
 
     for (const auto &material : parameters.materials)
       materials.emplace_back(create_constitutive_model<dim>(
@@ -77,13 +152,16 @@ namespace grainmpm
   {
     // On an error, end without the timing table (TimerOutput would warn
     // that it cannot synchronise while an exception is in flight).
+    bool stepping = false;
     try
       {
         setup();
-        DiscreteTime time(start_time,
+        stepping = true;
+        const StopSignals stop_signals;
+        DiscreteTime      time(start_time,
                           parameters.time_stepping.end_time,
                           next_step_size);
-        const auto   step_number = [&]() {
+        const auto        step_number = [&]() {
           return step_offset + time.get_step_number();
         };
         while (!time.is_at_end() &&
@@ -103,8 +181,22 @@ namespace grainmpm
               time.set_desired_next_step_size(
                 time_step_controller->next_step(statistics.max_speed));
             repartition_and_checkpoint(step_number(), time);
+            if (const int signal =
+                  time.is_at_end() ? 0 : stop_signals.received(communicator))
+              stop(signal, step_number(), time);
           }
         print_summary(step_number(), time.get_current_time());
+      }
+    catch (const InputError &error)
+      {
+        // Say what is left of an interrupted run.
+        timer.disable_output();
+        if (!stepping)
+          throw;
+        std::ostringstream message;
+        message << error.what() << " The output up to t = " << last_output_time
+                << " is complete in " << parameters.output.directory << ".";
+        throw InputError("", message.str());
       }
     catch (...)
       {
@@ -127,14 +219,16 @@ namespace grainmpm
                                                communicator);
     std::uintmax_t energy_length = 0, grains_length = 0;
     if (checkpoints->resuming())
-      checkpoints->resume_archive() >> energy_length >> grains_length;
+      checkpoints->read_state([&](boost::archive::binary_iarchive &archive) {
+        archive >> energy_length >> grains_length;
+      });
 
     {
       TimerOutput::Scope  scope(timer, "setup");
       GrainGenerator<dim> generator(parameters);
       grains = generator.generate(grid, particle_handler);
       if (checkpoints->resuming())
-        checkpoints->load(grid, particle_handler);
+        checkpoints->load(fingerprint(), grid, particle_handler);
 
       if (implicit)
         stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
@@ -184,8 +278,10 @@ namespace grainmpm
     }
     if (checkpoints->resuming())
       {
-        checkpoints->resume_archive() >> *this >> *energy_history >>
-          *output_writer;
+        checkpoints->read_state(
+          [this](boost::archive::binary_iarchive &archive) {
+            archive >> *this >> *energy_history >> *output_writer;
+          });
         checkpoints->finish_resume();
       }
     // The grains fill only part of the box: balance the material points.
@@ -294,10 +390,7 @@ namespace grainmpm
                               time_step_controller->get_minimum_step()) :
                           std::string("adaptive time stepping is off"))
                     << ". Lower Time stepping/CFL number or Time step, or "
-                       "raise Nonlinear solver/Maximum Newton iterations. "
-                       "Output up to t = "
-                    << time.get_current_time() << " is complete in "
-                    << parameters.output.directory << ".";
+                       "raise Nonlinear solver/Maximum Newton iterations.";
             throw InputError(adaptive ? "Time stepping/Minimum time step" :
                                         "Time stepping/Adaptive time stepping",
                              message.str());
@@ -349,6 +442,8 @@ namespace grainmpm
                                const unsigned int index)
   {
     TimerOutput::Scope scope(timer, "output");
+    last_output_step = step;
+    last_output_time = time;
     if (parameters.output.write_particles)
       output_writer->write_particles(particle_handler, time, index);
     if (parameters.output.write_grid && step > 0)
@@ -384,9 +479,17 @@ namespace grainmpm
     if (!time.is_at_end() && (checkpoint_now || (balance_interval > 0 &&
                                                  step % balance_interval == 0)))
       balance_load();
-    if (!checkpoint_now)
-      return;
+    if (checkpoint_now)
+      write_checkpoint(step, time);
+  }
 
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_checkpoint(const unsigned int  step,
+                                   const DiscreteTime &time)
+  {
     TimerOutput::Scope scope(timer, "checkpoint");
     // The state is that of a run starting here.
     const unsigned int offset = step_offset;
@@ -394,6 +497,7 @@ namespace grainmpm
     next_step_size            = time.get_next_step_size();
     step_offset               = step;
     checkpoints->write(step,
+                       fingerprint(),
                        grid,
                        particle_handler,
                        [this](boost::archive::binary_oarchive &archive) {
@@ -406,6 +510,49 @@ namespace grainmpm
                        });
     step_offset = offset;
     schedule.checkpoint_written();
+    last_checkpoint_step = step;
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::stop(const int           signal,
+                       const unsigned int  step,
+                       const DiscreteTime &time)
+  {
+    const std::string name = signal == SIGINT  ? "SIGINT" :
+                             signal == SIGTERM ? "SIGTERM" :
+                                                 std::to_string(signal);
+    pcout << "  " << name << " received: stopping after step " << step
+          << std::endl;
+    if (last_output_step != step)
+      write_output(step,
+                   time.get_current_time(),
+                   time.get_previous_step_size(),
+                   schedule.extra_output_written());
+    const bool checkpointing = parameters.checkpoint.steps_between > 0 ||
+                               parameters.checkpoint.minutes_between > 0.;
+    if (checkpointing && last_checkpoint_step != step)
+      {
+        balance_load();
+        write_checkpoint(step, time);
+      }
+    print_summary(step, time.get_current_time());
+
+    std::ostringstream message;
+    message << "stopped by " << name << " after step " << step
+            << " at t = " << time.get_current_time()
+            << ". The output up to this time is "
+            << "complete in " << parameters.output.directory << ". ";
+    if (checkpointing)
+      message << "To go on, set Checkpoint/Resume from = "
+              << parameters.output.directory << "/checkpoint-"
+              << Utilities::int_to_string(step, 6) << " and run again.";
+    else
+      message << "Checkpointing is off (Checkpoint/Steps between "
+                 "checkpoints = 0), so the run cannot be resumed from here.";
+    throw RunStopped(signal, message.str());
   }
 
 
@@ -420,6 +567,36 @@ namespace grainmpm
     TimerOutput::Scope scope(timer, "load balancing");
     grid.repartition(particle_handler,
                      parameters.load_balancing.particle_weight);
+  }
+
+
+
+  template <int dim>
+  std::string
+  Simulator<dim>::fingerprint() const
+  {
+    std::ostringstream out;
+    out << std::setprecision(17) << "dimension: " << dim << '\n'
+        << "grid: " << parameters.grid.lower_corner << " to "
+        << parameters.grid.upper_corner << ", cells";
+    for (const unsigned int n : parameters.grid.n_cells)
+      out << ' ' << n;
+    out << '\n' << "materials: " << parameters.materials.size() << '\n';
+    for (const auto &material : parameters.materials)
+      out << "material " << material.name << ": "
+          << material.constitutive_model_text << '\n';
+    out << "grains: " << grains.size() << '\n';
+    types::particle_index n_points = 0;
+    for (unsigned int g = 0; g < grains.size(); ++g)
+      {
+        out << "grain " << g + 1 << ": "
+            << parameters.materials[grains[g].material].name << ", "
+            << (grains[g].rigid ? "rigid" : "deformable") << ", "
+            << grains[g].n_particles << " material points\n";
+        n_points += grains[g].n_particles;
+      }
+    out << "material points: " << n_points << '\n';
+    return out.str();
   }
 
 

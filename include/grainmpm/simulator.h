@@ -26,11 +26,32 @@
 #include <boost/serialization/access.hpp>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace grainmpm
 {
+  /**
+   * Thrown by Simulator::run() when the run stopped early on SIGTERM or
+   * SIGINT after writing its output and, if checkpointing is on, a
+   * checkpoint. `main()` prints the message and returns 128 + the signal
+   * number, the exit status of a process killed by it.
+   */
+  class RunStopped : public std::runtime_error
+  {
+  public:
+    RunStopped(const int signal, const std::string &message)
+      : std::runtime_error(message)
+      , signal(signal)
+    {}
+
+    /** The signal that stopped the run. */
+    const int signal;
+  };
+
+
+
   /**
    * A grainmpm run: owns the grid, the material points, the materials, the
    * time integrator and the objects around the time loop (time step
@@ -97,6 +118,19 @@ namespace grainmpm
     repartition_and_checkpoint(const unsigned int  step,
                                const DiscreteTime &time);
 
+    /** Write the checkpoint of the state after step @p step. */
+    void
+    write_checkpoint(const unsigned int step, const DiscreteTime &time);
+
+    /**
+     * Stop after step @p step on the signal @p signal: write the output
+     * and a checkpoint of this step (if checkpointing is on) unless they
+     * were just written, print the summary and how to resume, and throw
+     * RunStopped.
+     */
+    [[noreturn]] void
+    stop(const int signal, const unsigned int step, const DiscreteTime &time);
+
     /**
      * With more than one MPI rank and Load balancing/Steps between
      * repartitioning > 0: repartition the cells weighted by their material
@@ -104,6 +138,14 @@ namespace grainmpm
      */
     void
     balance_load();
+
+    /**
+     * What a checkpoint must have been written by to be resumed by this
+     * run: the dimension, the grid, the materials' models, the grains with
+     * their materials and material points at creation. One item per line.
+     */
+    std::string
+    fingerprint() const;
 
     /** The final summary after @p n_steps steps to @p time. */
     void
@@ -137,6 +179,11 @@ namespace grainmpm
     std::unique_ptr<EnergyHistory<dim>>                  energy_history;
     std::unique_ptr<GrainHistory<dim>>                   grain_history;
     RunSummary<dim>                                      summary;
+
+    /** The steps after which output and a checkpoint were last written. */
+    unsigned int last_output_step     = numbers::invalid_unsigned_int;
+    double       last_output_time     = 0.;
+    unsigned int last_checkpoint_step = numbers::invalid_unsigned_int;
 
     /** Points the handler lost on this rank (counted, never expected). */
     types::particle_index n_lost = 0;

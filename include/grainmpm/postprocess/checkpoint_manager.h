@@ -29,6 +29,14 @@ namespace grainmpm
    * complete, so a run killed meanwhile leaves the older ones intact; the
    * newest `Number of checkpoints kept` are kept, including those of the
    * run a resumed run continues.
+   *
+   * The last file written, `manifest`, lists every file of the checkpoint
+   * with its size and checksum (64-bit FNV-1a) and a fingerprint of the run
+   * (dimension, grid, materials, grains and their material points). A run
+   * resumes only from a checkpoint whose files match their manifest and
+   * whose fingerprint is its own: a truncated or corrupted checkpoint, or
+   * one of another parameter file, is refused with a message that says
+   * what differs.
    */
   template <int dim>
   class CheckpointManager
@@ -40,7 +48,8 @@ namespace grainmpm
 
     /**
      * Whether the run resumes from a checkpoint (`Resume from`). If so, the
-     * constructor has opened its state: read it with resume_archive().
+     * constructor has checked its files against the manifest and opened its
+     * state: read it with read_state().
      */
     bool
     resuming() const
@@ -48,20 +57,24 @@ namespace grainmpm
       return resume_state != nullptr;
     }
 
-    /** The state archive of the checkpoint the run resumes from. */
-    boost::archive::binary_iarchive &
-    resume_archive()
-    {
-      return *resume_state;
-    }
-
     /**
      * Replace the material points of @p particle_handler and the cells of
-     * @p grid by those of the checkpoint the run resumes from.
+     * @p grid by those of the checkpoint the run resumes from, after
+     * checking that it was written by a run with the @p fingerprint of this
+     * one (see Simulator::fingerprint()). Collective.
      */
     void
-    load(BackgroundGrid<dim>             &grid,
+    load(const std::string               &fingerprint,
+         BackgroundGrid<dim>             &grid,
          Particles::ParticleHandler<dim> &particle_handler) const;
+
+    /**
+     * Run @p read on the state archive of the checkpoint the run resumes
+     * from, turning a failed read into an InputError naming the checkpoint.
+     */
+    void
+    read_state(
+      const std::function<void(boost::archive::binary_iarchive &)> &read);
 
     /** Close the checkpoint the run resumed from. */
     void
@@ -69,11 +82,15 @@ namespace grainmpm
 
     /**
      * Write checkpoint-@p step: @p grid with the material points of
-     * @p particle_handler, and the state written by @p write_state on
-     * rank 0. Collective.
+     * @p particle_handler, the state written by @p write_state on rank 0,
+     * and the manifest with @p fingerprint. Refuses (InputError on every
+     * rank) if the file system has less free space than the checkpoint
+     * needs, and stops if a write fails; in both cases the older
+     * checkpoints are left intact. Collective.
      */
     void
     write(const unsigned int               step,
+          const std::string               &fingerprint,
           const BackgroundGrid<dim>       &grid,
           Particles::ParticleHandler<dim> &particle_handler,
           const std::function<void(boost::archive::binary_oarchive &)>
@@ -86,8 +103,12 @@ namespace grainmpm
 
     std::ifstream                                    resume_stream;
     std::unique_ptr<boost::archive::binary_iarchive> resume_state;
+    /** The fingerprint in the manifest of the checkpoint resumed (rank 0). */
+    std::string resume_fingerprint;
     /** The checkpoints kept, oldest first (rank 0). */
     std::vector<std::string> checkpoints;
+    /** The size in bytes of the last checkpoint written (rank 0). */
+    std::uintmax_t last_size = 0;
   };
 } // namespace grainmpm
 
