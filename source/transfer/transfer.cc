@@ -302,6 +302,73 @@ namespace grainmpm
 
 
   template <int dim>
+  std::string
+  Transfer<dim>::check_update(const types::particle_index id,
+                              const unsigned int          grain,
+                              const Point<dim>           &old_position,
+                              const Point<dim>           &new_position,
+                              const Tensor<1, dim>       &new_velocity,
+                              const double                time,
+                              const double                dt) const
+  {
+    bool   finite        = true;
+    double cells_crossed = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        finite = finite && std::isfinite(new_velocity[d]) &&
+                 std::isfinite(new_position[d]);
+        cells_crossed = std::max(cells_crossed,
+                                 std::abs(new_position[d] - old_position[d]) /
+                                   grid.cell_size()[d]);
+      }
+    const bool explicit_scheme =
+      parameters.time_stepping.scheme == TimeSteppingScheme::explicit_leapfrog;
+    if (finite &&
+        (grains[grain].rigid || !explicit_scheme || !(cells_crossed > 1.)))
+      return "";
+
+    std::ostringstream message;
+    message << "at t = " << time + dt << " (step dt = " << dt << ") ";
+    if (!finite && grains[grain].rigid)
+      {
+        // Only the prescribed velocity moves a rigid grain.
+        const GrainParameters<dim> &source = parameters.grains[grain];
+        message << "it is not finite at the material point " << id
+                << " of the rigid grain " << grain + 1 << " at x = ("
+                << old_position
+                << "): the velocity must be finite at all times.";
+        return InputError(source.source + "/Prescribed velocity = " +
+                            source.prescribed_velocity,
+                          message.str())
+          .what();
+      }
+    message << "material point " << id << " of grain " << grain + 1 << " ("
+            << parameters.grains[grain].source << ") ";
+    if (!finite)
+      message << "got a non-finite velocity or position: the solution "
+                 "diverged. ";
+    else
+      message << "moved " << cells_crossed
+              << " cells in one step, faster than the explicit step can "
+                 "follow: the solution is blowing up. ";
+    message << (explicit_scheme ?
+                  "Use a smaller time step; if that does not help, check the "
+                  "materials and velocities." :
+                  "Use a smaller time step, or tighten Nonlinear "
+                  "solver/Tolerance.");
+    std::ostringstream entry;
+    if (parameters.time_stepping.time_step > 0.)
+      entry << "Time stepping/Time step = "
+            << parameters.time_stepping.time_step;
+    else
+      entry << "Time stepping/CFL number = "
+            << parameters.time_stepping.cfl_number;
+    return InputError(entry.str(), message.str()).what();
+  }
+
+
+
+  template <int dim>
   void
   Transfer<dim>::grid_to_particles(
     Particles::ParticleHandler<dim> &particle_handler,
@@ -323,6 +390,7 @@ namespace grainmpm
     double                max_speed_square        = 0.;
     double                particle_kinetic_change = 0.;
     std::string           error;
+    bool                  error_from_rigid = false;
     velocities_new.update_ghost_values();
     velocities_p2g.update_ghost_values();
     position_velocities.update_ghost_values();
@@ -333,7 +401,9 @@ namespace grainmpm
     for_each_particle(
       particle_handler,
       [&](const std::size_t p, auto &particle) __attribute__((always_inline)) {
-        if (!error.empty())
+        // After an error, go on only to find a prescribed velocity that
+        // is not finite: it is the cause of the others.
+        if (error_from_rigid)
           return;
         auto               properties   = particle->get_properties();
         const unsigned int grain        = Layout::get_grain(properties);
@@ -381,6 +451,23 @@ namespace grainmpm
               0.5 * properties[Layout::mass] *
               (new_velocity.norm_square() - old_velocity.norm_square());
           }
+        // A non-finite state, or (explicit) a point that moves more than
+        // a cell in one step, faster than any wave the step resolves: stop
+        // with the cause instead of carrying nonsense on.
+        if (const std::string failure = check_update(particle->get_id(),
+                                                     grain,
+                                                     old_position,
+                                                     new_position,
+                                                     new_velocity,
+                                                     time,
+                                                     dt);
+            !failure.empty())
+          {
+            if (error.empty() || grains[grain].rigid)
+              error = failure;
+            error_from_rigid = grains[grain].rigid;
+            return;
+          }
         Layout::set_velocity(new_velocity, properties);
         max_speed_square =
           std::max(max_speed_square, new_velocity.norm_square());
@@ -424,7 +511,8 @@ namespace grainmpm
                       << ". Enlarge the grid (Background grid/Lower corner, "
                          "Upper corner) or make that face open (Background "
                          "grid/Boundary conditions).";
-              error = message.str();
+              if (error.empty())
+                error = message.str();
               return;
             }
 

@@ -242,6 +242,23 @@ namespace grainmpm
                 StepStatistics                  &statistics);
 
   private:
+    /**
+     * What is wrong with the update of the material point @p id of grain
+     * @p grain from @p old_position to @p new_position and @p new_velocity
+     * in the step from @p time by @p dt: a non-finite value (a prescribed
+     * velocity that is not finite, or a diverged solution), or in the
+     * explicit scheme a move of more than one cell (a blow-up). Empty if
+     * nothing.
+     */
+    std::string
+    check_update(const types::particle_index id,
+                 const unsigned int          grain,
+                 const Point<dim>           &old_position,
+                 const Point<dim>           &new_position,
+                 const Tensor<1, dim>       &new_velocity,
+                 const double                time,
+                 const double                dt) const;
+
     const Parameters<dim>                                      &parameters;
     const BackgroundGrid<dim>                                  &grid;
     const std::vector<GrainInfo<dim>>                          &grains;
