@@ -114,9 +114,18 @@ namespace grainmpm
             if (!error.empty())
               return;
             std::ofstream out(directory + "/" + name);
-            what(out);
+            bool          failed = false;
+            try
+              {
+                // deal.II's writers throw ExcIO when the stream fails.
+                what(out);
+              }
+            catch (const std::exception &)
+              {
+                failed = true;
+              }
             out.close();
-            if (!out)
+            if (failed || !out)
               error = InputError("Output/Output directory = " + directory,
                                  "cannot write the file '" + name +
                                    "' in it (disk full, or no permission?).")
@@ -583,8 +592,17 @@ namespace grainmpm
       out << ' ' << n;
     out << '\n' << "materials: " << parameters.materials.size() << '\n';
     for (const auto &material : parameters.materials)
-      out << "material " << material.name << ": "
-          << material.constitutive_model_text << '\n';
+      {
+        out << "material " << material.name << ": "
+            << material.constitutive_model_text << ", density "
+            << material.density << ", Young's modulus "
+            << material.youngs_modulus << ", Poisson's ratio "
+            << material.poissons_ratio;
+        if (material.constitutive_model == ConstitutiveModelType::von_mises)
+          out << ", yield stress " << material.yield_stress
+              << ", hardening modulus " << material.hardening_modulus;
+        out << '\n';
+      }
     out << "grains: " << grains.size() << '\n';
     types::particle_index n_points = 0;
     for (unsigned int g = 0; g < grains.size(); ++g)

@@ -197,6 +197,39 @@ namespace grainmpm
                            InputError("Output/Output directory", error).what(),
                          communicator);
     }
+
+
+
+    /**
+     * Call @p write, which writes the .vtu files of one output (each rank
+     * its own) and the .pvtu record (rank 0), and turn a failed write on
+     * any rank into an error on every rank that names the files: deal.II
+     * throws ExcIO, whose text does not say which file. Collective.
+     */
+    template <typename Write>
+    std::string
+    write_vtu_files(const std::string &directory,
+                    const std::string &what,
+                    const MPI_Comm     communicator,
+                    const Write       &write)
+    {
+      std::string name, error;
+      try
+        {
+          name = write();
+        }
+      catch (const std::exception &)
+        {
+          error = "could not write the " + what + " files of this output in '" +
+                  directory + "' (disk full, or no permission?); the record " +
+                  "file lists the outputs before it.";
+        }
+      throw_on_all_ranks(error.empty() ?
+                           error :
+                           InputError("Output/Output directory", error).what(),
+                         communicator);
+      return name;
+    }
   } // namespace
 
 
@@ -249,13 +282,17 @@ namespace grainmpm
     flags.time  = time;
     flags.cycle = index;
     patches.set_flags(flags);
-    const std::string name = patches.write_vtu_with_pvtu_record(
-      parameters.directory + "/particles/",
-      "particles",
-      index,
-      grid.get_triangulation().get_communicator(),
-      5,
-      8);
+    const MPI_Comm communicator = grid.get_triangulation().get_communicator();
+    const std::string name      = write_vtu_files(
+      parameters.directory + "/particles", "particle", communicator, [&]() {
+        return patches.write_vtu_with_pvtu_record(parameters.directory +
+                                                    "/particles/",
+                                                  "particles",
+                                                  index,
+                                                  communicator,
+                                                  5,
+                                                  8);
+      });
     particle_records.emplace_back(time, "particles/" + name);
     write_pvd(parameters.directory + "/particles.pvd",
               particle_records,
@@ -342,13 +379,12 @@ namespace grainmpm
     flags.time  = time;
     flags.cycle = index;
     data_out.set_flags(flags);
-    const std::string name = data_out.write_vtu_with_pvtu_record(
-      parameters.directory + "/grid/",
-      "grid",
-      index,
-      grid.get_triangulation().get_communicator(),
-      5,
-      8);
+    const MPI_Comm communicator = grid.get_triangulation().get_communicator();
+    const std::string name      = write_vtu_files(
+      parameters.directory + "/grid", "grid", communicator, [&]() {
+        return data_out.write_vtu_with_pvtu_record(
+          parameters.directory + "/grid/", "grid", index, communicator, 5, 8);
+      });
     grid_records.emplace_back(time, "grid/" + name);
     write_pvd(parameters.directory + "/grid.pvd",
               grid_records,
