@@ -35,6 +35,21 @@ namespace
 
 
 
+  // A command line that grainmpm does not understand: the reason, then the
+  // usage, on standard error; exit code 1.
+  int
+  usage_error(const std::string &reason)
+  {
+    if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+      {
+        std::cerr << "grainmpm: error: " << reason << ".\n";
+        print_usage(std::cerr);
+      }
+    return 1;
+  }
+
+
+
   template <int dim>
   void
   print_parameters()
@@ -105,7 +120,12 @@ main(int argc, char *argv[])
         }
       if (arguments[0] == "--print-parameters")
         {
-          if (arguments.size() > 1 && arguments[1] == "3")
+          if (arguments.size() > 2 ||
+              (arguments.size() == 2 && arguments[1] != "2" &&
+               arguments[1] != "3"))
+            return usage_error("--print-parameters takes the dimension, 2 "
+                               "or 3, or nothing (2)");
+          if (arguments.size() == 2 && arguments[1] == "3")
             print_parameters<3>();
           else
             print_parameters<2>();
@@ -114,21 +134,18 @@ main(int argc, char *argv[])
       if (arguments[0] == "--check-parameters")
         {
           if (arguments.size() != 2)
-            {
-              print_usage(std::cerr);
-              return 1;
-            }
+            return usage_error("--check-parameters takes one parameter file");
           if (read_dimension(arguments[1]) == 2)
             check_parameters<2>(arguments[1]);
           else
             check_parameters<3>(arguments[1]);
           return 0;
         }
-      if (arguments.size() != 1 || arguments[0][0] == '-')
-        {
-          print_usage(std::cerr);
-          return 1;
-        }
+      if (arguments[0][0] == '-')
+        return usage_error("unknown option '" + arguments[0] + "'");
+      if (arguments.size() != 1)
+        return usage_error("a run takes one parameter file, not " +
+                           std::to_string(arguments.size()) + " arguments");
       if (read_dimension(arguments[0]) == 2)
         run<2>(arguments[0], MPI_COMM_WORLD);
       else

@@ -758,9 +758,31 @@ namespace grainmpm
                              " includes itself: " + through + file_name(name) +
                              ". Remove the include line.");
         }
-      chain.push_back(name);
       std::ifstream in(filename);
-      std::string   line;
+      {
+        const std::string from =
+          chain.empty() ?
+            "" :
+            " (included from '" +
+              std::filesystem::path(chain.back()).filename().string() + "')";
+        std::error_code code;
+        if (!std::filesystem::exists(filename, code))
+          throw InputError("",
+                           "the parameter file '" + filename +
+                             "' does not exist" + from + ".");
+        if (!std::filesystem::is_regular_file(filename, code))
+          throw InputError("",
+                           "'" + filename +
+                             "' is not a parameter file but a directory or "
+                             "a device" +
+                             from + ".");
+        if (!in)
+          throw InputError("",
+                           "the parameter file '" + filename +
+                             "' cannot be read" + from + ".");
+      }
+      chain.push_back(name);
+      std::string line;
       while (std::getline(in, line))
         {
           line = Utilities::trim(strip_comment(line));
