@@ -9,6 +9,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 
@@ -453,21 +454,30 @@ namespace grainmpm
           }
         // A non-finite state, or (explicit) a point that moves more than
         // a cell in one step, faster than any wave the step resolves: stop
-        // with the cause instead of carrying nonsense on.
-        if (const std::string failure = check_update(particle->get_id(),
-                                                     grain,
-                                                     old_position,
-                                                     new_position,
-                                                     new_velocity,
-                                                     time,
-                                                     dt);
-            !failure.empty())
-          {
-            if (error.empty() || grains[grain].rigid)
-              error = failure;
-            error_from_rigid = grains[grain].rigid;
-            return;
-          }
+        // with the cause instead of carrying nonsense on. A cheap test
+        // first (NaN fails every comparison); check_update() decides and
+        // writes the message.
+        bool suspicious = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          suspicious = suspicious ||
+                       !(std::abs(new_velocity[d]) <=
+                         std::numeric_limits<double>::max()) ||
+                       !(std::abs(new_position[d] - old_position[d]) <= h[d]);
+        if (suspicious)
+          if (const std::string failure = check_update(particle->get_id(),
+                                                       grain,
+                                                       old_position,
+                                                       new_position,
+                                                       new_velocity,
+                                                       time,
+                                                       dt);
+              !failure.empty())
+            {
+              if (error.empty() || grains[grain].rigid)
+                error = failure;
+              error_from_rigid = grains[grain].rigid;
+              return;
+            }
         Layout::set_velocity(new_velocity, properties);
         max_speed_square =
           std::max(max_speed_square, new_velocity.norm_square());
