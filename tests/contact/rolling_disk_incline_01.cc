@@ -128,6 +128,12 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
+  // With arguments n_cells, mu and 0 or 1 (gap check): that case alone.
+  if (argc == 4)
+    {
+      roll(std::atoi(argv[1]), std::atof(argv[2]), std::atoi(argv[3]) != 0);
+      return 0;
+    }
   roll(80, 0.3, false);
   roll(80, 0.3, true);
   roll(160, 0.3, true);
