@@ -110,9 +110,8 @@ press(const unsigned int radius_in_cells,
           << ": P / weight = " << load / weight << ", a / R = " << a / R
           << ", Hertz " << a_hertz / R
           << ", (a - a_Hertz) / h = " << (a - a_hertz) / h
-          << " (within one cell: "
-          << (std::abs(a - a_hertz) < h ? "yes" : "no") << ")"
-          << std::defaultfloat << std::endl;
+          << " (within one cell: " << (std::abs(a - a_hertz) < h ? "yes" : "no")
+          << ")" << std::defaultfloat << std::endl;
   return (a - a_hertz) / R;
 }
 
