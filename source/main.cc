@@ -2,7 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 // grainmpm: multi-grain Material Point Method after Cummins & Brackbill.
-// Usage: grainmpm case.prm | --print-parameters [2|3] |
+// Usage: grainmpm [--quiet] case.prm | --print-parameters [2|3] |
 //        --check-parameters case.prm | --version | --help
 
 #include <grainmpm/base/input_error.h>
@@ -13,6 +13,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -23,7 +24,8 @@ namespace
   void
   print_usage(std::ostream &out)
   {
-    out << "Usage: grainmpm CASE.prm               run a case\n"
+    out << "Usage: grainmpm [--quiet] CASE.prm     run a case (--quiet: no "
+           "progress lines)\n"
         << "       grainmpm --check-parameters CASE.prm   parse and check "
            "only\n"
         << "       grainmpm --print-parameters [2|3]      print every "
@@ -103,7 +105,17 @@ int
 main(int argc, char *argv[])
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::vector<std::string>           arguments(argv + 1, argv + argc);
+  std::vector<std::string>                 arguments(argv + 1, argv + argc);
+  // --quiet (-q) may stand anywhere: no header and no progress lines.
+  const auto quiet_option =
+    std::find_if(arguments.begin(),
+                 arguments.end(),
+                 [](const std::string &argument) {
+                   return argument == "--quiet" || argument == "-q";
+                 });
+  const bool quiet = quiet_option != arguments.end();
+  if (quiet)
+    arguments.erase(quiet_option);
   try
     {
       if (arguments.empty() || arguments[0] == "--help" || arguments[0] == "-h")
@@ -147,9 +159,9 @@ main(int argc, char *argv[])
         return usage_error("a run takes one parameter file, not " +
                            std::to_string(arguments.size()) + " arguments");
       if (read_dimension(arguments[0]) == 2)
-        run<2>(arguments[0], MPI_COMM_WORLD);
+        run<2>(arguments[0], MPI_COMM_WORLD, quiet);
       else
-        run<3>(arguments[0], MPI_COMM_WORLD);
+        run<3>(arguments[0], MPI_COMM_WORLD, quiet);
     }
   catch (const RunStopped &stopped)
     {

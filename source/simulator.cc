@@ -74,12 +74,15 @@ namespace grainmpm
   Simulator<dim>::Simulator(const Parameters<dim>  &parameters,
                             const ParameterHandler &prm,
                             const std::string      &input_file,
-                            const MPI_Comm          communicator)
+                            const MPI_Comm          communicator,
+                            const bool              quiet)
     : parameters(parameters)
     , communicator(communicator)
     , implicit(parameters.time_stepping.scheme ==
                TimeSteppingScheme::implicit_theta)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , progress(std::cout,
+               !quiet && Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(pcout,
             parameters.output.test_mode ? TimerOutput::never :
                                           TimerOutput::summary,
@@ -173,6 +176,7 @@ namespace grainmpm
         const auto        step_number = [&]() {
           return step_offset + time.get_step_number();
         };
+        wall_clock.restart();
         while (!time.is_at_end() &&
                step_number() < parameters.time_stepping.maximum_number_of_steps)
           {
@@ -226,10 +230,12 @@ namespace grainmpm
       std::make_unique<CheckpointManager<dim>>(parameters.checkpoint,
                                                parameters.output.directory,
                                                communicator);
-    std::uintmax_t energy_length = 0, grains_length = 0;
+    std::uintmax_t energy_length = 0, grains_length = 0, walls_length = 0,
+                   contacts_length = 0;
     if (checkpoints->resuming())
       checkpoints->read_state([&](boost::archive::binary_iarchive &archive) {
-        archive >> energy_length >> grains_length;
+        archive >> energy_length >> grains_length >> walls_length >>
+          contacts_length;
       });
 
     {
@@ -278,18 +284,42 @@ namespace grainmpm
                                              parameters.physics.gravity,
                                              communicator,
                                              energy_length);
+      for (const auto &grain : grains)
+        grain_is_rigid.push_back(grain.rigid);
       grain_history =
         std::make_unique<GrainHistory<dim>>(parameters.output.directory +
                                               "/grains.csv",
-                                            grains.size(),
+                                            grain_is_rigid,
                                             communicator,
                                             grains_length);
+      std::vector<Point<dim>> centres;
+      for (const auto &motion : grain_history->compute(particle_handler))
+        centres.push_back(motion.centre_of_mass);
+      reaction_history =
+        std::make_unique<ReactionHistory<dim>>(parameters.output.directory +
+                                                 "/walls.csv",
+                                               grid,
+                                               grains,
+                                               centres,
+                                               communicator,
+                                               walls_length);
+      if (parameters.output.write_contacts)
+        contact_history = std::make_unique<ContactHistory<dim>>(
+          parameters.output.directory + "/contacts.csv",
+          parameters.contact.model == ContactModel::coulomb_friction ?
+            parameters.contact.friction_coefficient :
+            0.,
+          communicator,
+          contacts_length);
     }
     if (checkpoints->resuming())
       {
         checkpoints->read_state(
           [this](boost::archive::binary_iarchive &archive) {
-            archive >> *this >> *energy_history >> *output_writer;
+            archive >> *this >> *energy_history >> *output_writer >>
+              *grain_history >> *reaction_history;
+            if (contact_history)
+              archive >> *contact_history;
           });
         checkpoints->finish_resume();
       }
@@ -299,16 +329,16 @@ namespace grainmpm
     // runs on as many ranks.
     balance_load();
     if (!parameters.output.test_mode)
-      pcout << "grainmpm " << GRAINMPM_VERSION << " on deal.II "
-            << DEAL_II_PACKAGE_VERSION << ", " << dim << "D, "
-            << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank"
-            << (Utilities::MPI::n_mpi_processes(communicator) > 1 ? "s" : "")
-            << std::endl;
-    pcout << "grainmpm: " << dim << "D, "
-          << grid.get_triangulation().n_global_active_cells() << " cells, "
-          << grains.size() << " grains, "
-          << particle_handler.n_global_particles() << " material points"
-          << std::endl;
+      progress << "grainmpm " << GRAINMPM_VERSION << " on deal.II "
+               << DEAL_II_PACKAGE_VERSION << ", " << dim << "D, "
+               << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank"
+               << (Utilities::MPI::n_mpi_processes(communicator) > 1 ? "s" : "")
+               << std::endl;
+    progress << "grainmpm: " << dim << "D, "
+             << grid.get_triangulation().n_global_active_cells() << " cells, "
+             << grains.size() << " grains, "
+             << particle_handler.n_global_particles() << " material points"
+             << std::endl;
 
     // Particles that the handler loses (should not happen: G2P checks the
     // box first) are counted, never silently dropped.
@@ -422,7 +452,13 @@ namespace grainmpm
             << " particles left through open faces at t = "
             << time.get_current_time() << std::endl;
 
-    TimerOutput::Scope       scope(timer, "diagnostics");
+    TimerOutput::Scope scope(timer, "diagnostics");
+    reaction_history->write_row(step,
+                                time.get_current_time(),
+                                time.get_previous_step_size(),
+                                stepper->get_impulses());
+    if (contact_history)
+      contact_history->add_step(stepper->get_impulses());
     const EnergySummary<dim> current =
       energy_history->compute(particle_handler);
     energy_history->write_row(step,
@@ -457,19 +493,46 @@ namespace grainmpm
       output_writer->write_particles(particle_handler, time, index);
     if (parameters.output.write_grid && step > 0)
       output_writer->write_grid(*stepper, time, index);
-    if (parameters.output.write_grain_history)
-      grain_history->write(particle_handler, time);
-    // The histories are written on rank 0 every step (energy) or output
-    // (grains): a failed write stops every rank here.
+    const std::vector<GrainMotion<dim>> motions =
+      grain_history->compute(particle_handler);
+    std::vector<GrainContactForce<dim>> contact_forces;
+    if (contact_history)
+      {
+        contact_forces = contact_history->collect(time);
+        contact_history->write(contact_forces, time);
+        output_writer->write_contacts(
+          contact_forces, motions, grain_is_rigid, time, index);
+      }
+    grain_history->write(
+      motions,
+      ContactHistory<dim>::coordination_numbers(contact_forces, grains.size()),
+      time,
+      parameters.output.write_grain_history);
+    // The histories are written on rank 0 every step (energy, walls) or
+    // output (grains): a failed write stops every rank here.
     energy_history->check_written();
+    reaction_history->check_written();
     grain_history->check_written();
 
+    // The progress line; the wall time and the estimate of the time to
+    // the end (from the pace since the loop started) are not in test mode.
     const EnergySummary<dim> &energies = summary.get_current_energies();
-    pcout << "step " << std::setw(6) << step << "  t = " << std::scientific
-          << std::setprecision(4) << time << "  dt = " << std::setprecision(3)
-          << dt << "  E_kin = " << std::setprecision(5) << energies.kinetic
-          << "  E_el = " << energies.elastic << "  E_tot = " << energies.total()
-          << std::defaultfloat << std::endl;
+    progress << "step " << std::setw(6) << step << "  t = " << std::scientific
+             << std::setprecision(4) << time
+             << "  dt = " << std::setprecision(3) << dt
+             << "  E_kin = " << std::setprecision(5) << energies.kinetic
+             << "  E_el = " << energies.elastic
+             << "  E_tot = " << energies.total() << std::defaultfloat;
+    if (!parameters.output.test_mode && time > start_time)
+      {
+        const double elapsed = wall_clock.wall_time();
+        const double left    = elapsed *
+                            (parameters.time_stepping.end_time - time) /
+                            (time - start_time);
+        progress << std::fixed << std::setprecision(1) << "  wall " << elapsed
+                 << " s  to end ~" << left << " s" << std::defaultfloat;
+      }
+    progress << std::endl;
   }
 
 
@@ -500,6 +563,9 @@ namespace grainmpm
                                    const DiscreteTime &time)
   {
     TimerOutput::Scope scope(timer, "checkpoint");
+    // Rank 0 writes the state: the contact sums of the interval go there.
+    if (contact_history)
+      contact_history->gather_sums();
     // The state is that of a run starting here.
     const unsigned int offset = step_offset;
     start_time                = time.get_current_time();
@@ -514,8 +580,16 @@ namespace grainmpm
                            energy_history->length();
                          const std::uintmax_t grains_length =
                            grain_history->length();
-                         archive << energy_length << grains_length << *this
-                                 << *energy_history << *output_writer;
+                         const std::uintmax_t walls_length =
+                           reaction_history->length();
+                         const std::uintmax_t contacts_length =
+                           contact_history ? contact_history->length() : 0;
+                         archive << energy_length << grains_length
+                                 << walls_length << contacts_length << *this
+                                 << *energy_history << *output_writer
+                                 << *grain_history << *reaction_history;
+                         if (contact_history)
+                           archive << *contact_history;
                        });
     step_offset = offset;
     schedule.checkpoint_written();
@@ -672,13 +746,15 @@ namespace grainmpm
 
   template <int dim>
   void
-  run(const std::string &filename, const MPI_Comm communicator)
+  run(const std::string &filename,
+      const MPI_Comm     communicator,
+      const bool         quiet)
   {
     ParameterHandler prm;
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
     add_random_packing(parameters);
-    Simulator<dim> simulator(parameters, prm, filename, communicator);
+    Simulator<dim> simulator(parameters, prm, filename, communicator, quiet);
     simulator.run();
   }
 
@@ -687,7 +763,7 @@ namespace grainmpm
   template class Simulator<2>;
   template class Simulator<3>;
   template void
-  run<2>(const std::string &, const MPI_Comm);
+  run<2>(const std::string &, const MPI_Comm, const bool);
   template void
-  run<3>(const std::string &, const MPI_Comm);
+  run<3>(const std::string &, const MPI_Comm, const bool);
 } // namespace grainmpm

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// Whole runs of grainmpm from a test, judged by their energy.csv.
+// Whole runs of grainmpm from a test, judged by their history files.
 
 #ifndef grainmpm_tests_energy_csv_h
 #define grainmpm_tests_energy_csv_h
@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-/** The columns of an energy.csv, by name without the unit. */
+/** The columns of a history CSV file, by name without the unit. */
 inline std::map<std::string, std::vector<double>>
-read_energy(const std::string &directory)
+read_csv(const std::string &filename)
 {
-  std::ifstream            file(directory + "/energy.csv");
+  std::ifstream            file(filename);
   std::string              line;
   std::vector<std::string> names;
   std::getline(file, line);
@@ -43,9 +43,18 @@ read_energy(const std::string &directory)
 
 
 
+/** The columns of the energy.csv in @p directory. */
+inline std::map<std::string, std::vector<double>>
+read_energy(const std::string &directory)
+{
+  return read_csv(directory + "/energy.csv");
+}
+
+
+
 /**
  * Run @p text (2D) as NAME.prm in test mode without particle and grid
- * output; return its energy.csv columns.
+ * output, writing into results-NAME; return its energy.csv columns.
  */
 inline std::map<std::string, std::vector<double>>
 run_case(const std::string &name, const std::string &text)

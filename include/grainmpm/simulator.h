@@ -9,10 +9,12 @@
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/postprocess/checkpoint_manager.h>
+#include <grainmpm/postprocess/contact_history.h>
 #include <grainmpm/postprocess/energy_history.h>
 #include <grainmpm/postprocess/grain_history.h>
 #include <grainmpm/postprocess/output_schedule.h>
 #include <grainmpm/postprocess/output_writer.h>
+#include <grainmpm/postprocess/reaction_history.h>
 #include <grainmpm/postprocess/run_summary.h>
 #include <grainmpm/time_integration/time_integrator.h>
 #include <grainmpm/time_integration/time_step_controller.h>
@@ -65,12 +67,14 @@ namespace grainmpm
     /**
      * Set up a run from parsed @p parameters. @p prm is the handler they
      * were read with (written to parameters.prm) and @p input_file the
-     * file itself (copied to original.prm).
+     * file itself (copied to original.prm). With @p quiet, no header and
+     * no progress lines: only the summary, warnings and errors.
      */
     Simulator(const Parameters<dim>  &parameters,
               const ParameterHandler &prm,
               const std::string      &input_file,
-              const MPI_Comm          communicator);
+              const MPI_Comm          communicator,
+              const bool              quiet = false);
 
     /** Advance to the end time, writing output on the way. */
     void
@@ -102,7 +106,10 @@ namespace grainmpm
                 const DiscreteTime   &time,
                 const StepStatistics &statistics);
 
-    /** Particles, grid, grains.csv and the progress line. */
+    /**
+     * Particles, grid, grains.csv, contacts.csv and the force chains, and
+     * the progress line.
+     */
     void
     write_output(const unsigned int step,
                  const double       time,
@@ -165,20 +172,28 @@ namespace grainmpm
     const MPI_Comm         communicator;
     const bool             implicit;
     ConditionalOStream     pcout;
-    TimerOutput            timer;
+    /** The header and the progress lines (not with --quiet). */
+    ConditionalOStream progress;
+    /** Wall clock at the start of the time loop, for the progress lines. */
+    Timer       wall_clock;
+    TimerOutput timer;
 
     BackgroundGrid<dim>                                  grid;
     Particles::ParticleHandler<dim>                      particle_handler;
     std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
     std::vector<GrainInfo<dim>>                          grains;
-    std::unique_ptr<TimeIntegrator<dim>>                 stepper;
-    std::unique_ptr<TimeStepController>                  time_step_controller;
-    OutputSchedule                                       schedule;
-    std::unique_ptr<CheckpointManager<dim>>              checkpoints;
-    std::unique_ptr<OutputWriter<dim>>                   output_writer;
-    std::unique_ptr<EnergyHistory<dim>>                  energy_history;
-    std::unique_ptr<GrainHistory<dim>>                   grain_history;
-    RunSummary<dim>                                      summary;
+    /** Per grain: whether it is rigid. */
+    std::vector<bool>                       grain_is_rigid;
+    std::unique_ptr<TimeIntegrator<dim>>    stepper;
+    std::unique_ptr<TimeStepController>     time_step_controller;
+    OutputSchedule                          schedule;
+    std::unique_ptr<CheckpointManager<dim>> checkpoints;
+    std::unique_ptr<OutputWriter<dim>>      output_writer;
+    std::unique_ptr<EnergyHistory<dim>>     energy_history;
+    std::unique_ptr<GrainHistory<dim>>      grain_history;
+    std::unique_ptr<ReactionHistory<dim>>   reaction_history;
+    std::unique_ptr<ContactHistory<dim>>    contact_history;
+    RunSummary<dim>                         summary;
 
     /** The steps after which output and a checkpoint were last written. */
     unsigned int last_output_step     = numbers::invalid_unsigned_int;
@@ -199,11 +214,13 @@ namespace grainmpm
 
   /**
    * Read @p filename for dimension @p dim and run it: what `grainmpm FILE`
-   * does.
+   * does (`grainmpm --quiet FILE` with @p quiet).
    */
   template <int dim>
   void
-  run(const std::string &filename, const MPI_Comm communicator);
+  run(const std::string &filename,
+      const MPI_Comm     communicator,
+      const bool         quiet = false);
 } // namespace grainmpm
 
 #endif

@@ -19,9 +19,6 @@ namespace grainmpm
 {
   namespace
   {
-    const std::array<std::string, 6> face_names = {
-      {"x-", "x+", "y-", "y+", "z-", "z+"}};
-
     template <int dim>
     std::string
     point_to_string(const Point<dim> &point)
@@ -47,7 +44,7 @@ namespace grainmpm
       upper_corner[d] = 1.;
     for (unsigned int f = 0; f < 2 * dim; ++f)
       boundary_conditions_text +=
-        (f > 0 ? ", " : "") + face_names[f] + ": free slip";
+        (f > 0 ? ", " : "") + std::string(face_name(f)) + ": free slip";
   }
 
 
@@ -120,7 +117,7 @@ namespace grainmpm
                              "' does not.");
         std::vector<std::pair<std::string, unsigned int>> faces;
         for (unsigned int f = 0; f < 2 * dim; ++f)
-          faces.emplace_back(face_names[f], f);
+          faces.emplace_back(face_name(f), f);
         const unsigned int face = parse_choice<unsigned int>(
           bc_entry,
           parts[0],
@@ -245,6 +242,19 @@ namespace grainmpm
                       "about 23 kN/m). 0 means not photoelastic: the fringe "
                       "order is written as 0. Units: stress length.",
                       Patterns::Double(0.));
+    prm.add_parameter(
+      "Initial stress",
+      initial_stress,
+      "Stress of the material points at the start, as expressions of "
+      "x, y (, z) separated by ';' (tension positive): in 2D "
+      "'s_xx; s_yy; s_xy' (then s_zz = nu (s_xx + s_yy) in "
+      "plane strain and 0 in plane stress) or 's_xx; s_yy; "
+      "s_xy; s_zz', in 3D 's_xx; s_yy; s_zz; s_xy; s_xz; "
+      "s_yz'; e.g. the lithostatic state of "
+      "a layer of height 1 with rho g = 1 and K0 = 0.5: "
+      "'-0.5*(1 - y); -(1 - y); 0'. "
+      "The grains of this material start with it unless they "
+      "give their own; empty: zero. Units: stress.");
   }
 
 
@@ -470,8 +480,9 @@ namespace grainmpm
     prm.add_parameter("Output directory",
                       directory,
                       "Directory for all output (created if missing): "
-                      "particles.pvd, grid.pvd, energy.csv, grains.csv, "
-                      "original.prm and parameters.prm. Dimensionless.");
+                      "particles.pvd, grid.pvd, contacts.pvd, energy.csv, "
+                      "grains.csv, walls.csv, contacts.csv, original.prm "
+                      "and parameters.prm. Dimensionless.");
     prm.add_parameter("Output interval",
                       interval,
                       "Simulated time between two graphical outputs and "
@@ -487,7 +498,18 @@ namespace grainmpm
     prm.add_parameter("Write grain history",
                       write_grain_history,
                       "Write grains.csv (per grain centre of mass, velocity, "
-                      "angular velocity) at every output.");
+                      "angular velocity, rotation, coordination number) at "
+                      "every output.");
+    prm.add_parameter("Write contacts",
+                      write_contacts,
+                      "Write contacts.csv (per pair of grains in contact: "
+                      "the mean contact force over the output interval, its "
+                      "normal and tangential parts, contact point, normal, "
+                      "mobilised friction) and contacts.pvd with the "
+                      "contacts/*.vtu force chains (a line between the "
+                      "centres of two grains in contact, or from a grain's "
+                      "centre to its contact point with a rigid grain) at "
+                      "every output.");
     prm.add_parameter("Test mode",
                       test_mode,
                       "Print only what is deterministic (no timings, no "

@@ -542,9 +542,11 @@ namespace grainmpm
                                    VectorType                  &velocities,
                                    std::vector<unsigned char>  *node_in_contact,
                                    const double                 mass_threshold,
-                                   ContactStatus<dim>          *status) const
+                                   ContactStatus<dim>          *status,
+                                   ConstraintImpulses<dim>     *impulses) const
   {
     NodeFields<dim>             fields(layout);
+    std::vector<Tensor<1, dim>> before;
     std::vector<Tensor<1, dim>> node_slips;
     std::vector<ContactState>   node_states;
     std::vector<double>         node_allowed;
@@ -564,6 +566,8 @@ namespace grainmpm
                                 fields.rigid.get(),
                                 fields.normals.data(),
                                 node_allowed.data());
+        if (impulses != nullptr)
+          before = fields.velocities;
         Tensor<1, dim> reference;
         const bool     corrected =
           project_node(n,
@@ -589,6 +593,16 @@ namespace grainmpm
         if (corrected)
           {
             fields.scatter(velocities);
+            if (impulses != nullptr)
+              record_impulses(layout,
+                              node,
+                              n,
+                              fields.masses.data(),
+                              fields.rigid.get(),
+                              fields.normals.data(),
+                              before.data(),
+                              fields.velocities.data(),
+                              *impulses);
             if (node_in_contact != nullptr)
               (*node_in_contact)[node] = 1;
             ++n_corrected;
@@ -654,8 +668,12 @@ namespace grainmpm
   template <int dim>
   void
   GrainContact<dim>::apply_walls(const GrainFieldLayout<dim> &layout,
-                                 VectorType                  &velocities) const
+                                 VectorType                  &velocities,
+                                 const VectorType            *masses,
+                                 ConstraintImpulses<dim>     *impulses) const
   {
+    Assert(impulses == nullptr || masses != nullptr,
+           ExcMessage("Recording impulses needs the masses."));
     for (const unsigned int node : grid.boundary_nodes())
       {
         const unsigned int faces = grid.node_faces(node);
@@ -668,10 +686,17 @@ namespace grainmpm
             Tensor<1, dim> velocity = get_slot_vector<dim>(velocities, s);
             for (unsigned int face = 0; face < 2 * dim; ++face)
               if (faces & (1U << face))
-                apply_wall(grid.boundary_condition(face),
-                           face_normal(face),
-                           velocity,
-                           wall_allowed_approach(s, face));
+                {
+                  const Tensor<1, dim> before = velocity;
+                  apply_wall(grid.boundary_condition(face),
+                             face_normal(face),
+                             velocity,
+                             wall_allowed_approach(s, face));
+                  if (impulses != nullptr)
+                    impulses->walls[face] += impulses->scale *
+                                             masses->local_element(s) *
+                                             (velocity - before);
+                }
             set_slot_vector<dim>(velocity, velocities, s);
           }
       }
@@ -776,13 +801,15 @@ namespace grainmpm
                                   const ContactStatus<dim>    &status,
                                   const Reference              reference,
                                   VectorType                  &velocities,
-                                  std::vector<unsigned char>  *node_flags) const
+                                  std::vector<unsigned char>  *node_flags,
+                                  ConstraintImpulses<dim>     *impulses) const
   {
     if (!status.any_active)
       return 0;
-    const double    mu = friction_coefficient();
-    NodeFields<dim> fields(layout);
-    unsigned int    n_active = 0;
+    const double                mu = friction_coefficient();
+    NodeFields<dim>             fields(layout);
+    std::vector<Tensor<1, dim>> before;
+    unsigned int                n_active = 0;
     for (const unsigned int node : layout.contact_nodes())
       {
         const unsigned int begin = layout.node_slots_begin(node);
@@ -797,6 +824,8 @@ namespace grainmpm
           (*node_flags)[node] = 1;
         fields.gather(
           layout, field_is_rigid, masses, normals, velocities, node);
+        if (impulses != nullptr)
+          before = fields.velocities;
         project_node_frozen(fields.n,
                             fields.masses.data(),
                             fields.rigid.get(),
@@ -811,13 +840,24 @@ namespace grainmpm
                               nullptr :
                               status.allowed.data() + begin);
         fields.scatter(velocities);
+        if (impulses != nullptr)
+          record_impulses(layout,
+                          node,
+                          fields.n,
+                          fields.masses.data(),
+                          fields.rigid.get(),
+                          fields.normals.data(),
+                          before.data(),
+                          fields.velocities.data(),
+                          *impulses);
       }
 
     for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
       if (status.wall_state[w] != ContactState::free)
         {
-          const unsigned int s        = status.wall_slots[w];
-          Tensor<1, dim>     velocity = get_slot_vector<dim>(velocities, s);
+          const unsigned int   s        = status.wall_slots[w];
+          Tensor<1, dim>       velocity = get_slot_vector<dim>(velocities, s);
+          const Tensor<1, dim> before   = velocity;
           apply_state(
             status.wall_state[w],
             face_normal(status.wall_faces[w]),
@@ -827,8 +867,91 @@ namespace grainmpm
             velocity,
             reference == Reference::zero ? 0. : status.wall_allowed[w]);
           set_slot_vector<dim>(velocity, velocities, s);
+          if (impulses != nullptr)
+            impulses->walls[status.wall_faces[w]] +=
+              impulses->scale * masses.local_element(s) * (velocity - before);
         }
     return n_active;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainContact<dim>::record_impulses(const GrainFieldLayout<dim> &layout,
+                                     const unsigned int           node,
+                                     const unsigned int           n,
+                                     const double                *masses,
+                                     const bool                  *rigid,
+                                     const Tensor<1, dim>        *normals,
+                                     const Tensor<1, dim>        *before,
+                                     const Tensor<1, dim>        *after,
+                                     ConstraintImpulses<dim> &impulses) const
+  {
+    const unsigned int begin    = layout.node_slots_begin(node);
+    const Point<dim>  &position = grid.node_position(node);
+    // One entry: impulse on field `to` from field `from`, normal out of
+    // `from`; stored with the grains in increasing order.
+    const auto add = [&](const unsigned int    from,
+                         const unsigned int    to,
+                         const Tensor<1, dim> &impulse,
+                         const Tensor<1, dim> &normal) {
+      if (impulse.norm_square() == 0.)
+        return;
+      const unsigned int grain_from = layout.field(begin + from);
+      const unsigned int grain_to   = layout.field(begin + to);
+      typename ConstraintImpulses<dim>::Pair pair;
+      const bool                             in_order = grain_from < grain_to;
+      pair.grain_a  = in_order ? grain_from : grain_to;
+      pair.grain_b  = in_order ? grain_to : grain_from;
+      pair.impulse  = in_order ? impulse : -impulse;
+      pair.normal   = in_order ? normal : -normal;
+      pair.position = position;
+      impulses.pairs.push_back(pair);
+    };
+
+    int rigid_field = -1;
+    for (unsigned int k = 0; k < n; ++k)
+      if (rigid[k] && rigid_field < 0)
+        rigid_field = k;
+    // The mass of the fields other than k, summed (not the total less
+    // m_k, which cancels to zero beside a field of round-off mass).
+    const auto others = [&](const unsigned int k) {
+      double mass = 0.;
+      for (unsigned int q = 0; q < n; ++q)
+        if (q != k)
+          mass += masses[q];
+      return mass;
+    };
+    const auto impulse = [&](const unsigned int k) {
+      return impulses.scale * masses[k] * (after[k] - before[k]);
+    };
+
+    if (rigid_field >= 0)
+      {
+        // Every deformable field was held against the rigid one.
+        for (unsigned int k = 0; k < n; ++k)
+          if (!rigid[k])
+            add(k, rigid_field, -impulse(k), normals[k]);
+        return;
+      }
+    // Deformable fields only: field k's impulse comes from the others in
+    // proportion to their masses (exactly from the partner when two meet);
+    // the pair's impulse is the mean of the two views, so it is equal and
+    // opposite.
+    for (unsigned int k = 0; k < n; ++k)
+      for (unsigned int j = k + 1; j < n; ++j)
+        {
+          if (masses[k] <= 0. || masses[j] <= 0.)
+            continue;
+          const Tensor<1, dim> on_j   = masses[k] / others(j) * impulse(j);
+          const Tensor<1, dim> on_k   = masses[j] / others(k) * impulse(k);
+          Tensor<1, dim>       normal = normals[k] - normals[j];
+          const double         length = normal.norm();
+          if (length > 0.)
+            normal /= length;
+          add(k, j, 0.5 * (on_j - on_k), normal);
+        }
   }
 
 

@@ -19,9 +19,10 @@ namespace grainmpm
   std::shared_ptr<FunctionParser<dim>>
   parse_vector_function(const std::string &expressions,
                         const bool         time_dependent,
-                        const std::string &entry)
+                        const std::string &entry,
+                        const unsigned int n_components)
   {
-    auto function = std::make_shared<FunctionParser<dim>>(dim);
+    auto function = std::make_shared<FunctionParser<dim>>(n_components);
     // deal.II prints muparser's own report of a syntax error to std::cerr
     // before it throws: keep it off the screen, the message below says it.
     std::ostringstream parser_report;
@@ -44,7 +45,7 @@ namespace grainmpm
                              std::map<std::string, double>{{"pi", M_PI}},
                              time_dependent);
         // muparser reports some errors only on evaluation.
-        Vector<double> value(dim);
+        Vector<double> value(n_components);
         function->vector_value(Point<dim>(), value);
       }
     catch (const ExceptionBase &exception)
@@ -57,6 +58,79 @@ namespace grainmpm
       }
     return function;
   }
+
+
+
+  namespace
+  {
+    /**
+     * Set the stress of the point at @p point in @p properties from
+     * @p function (3, 4 or 6 components, as `Initial stress` says) for
+     * @p material (in 2D in plane strain if @p plane_strain); returns what is wrong with it (a value that is not
+     * finite, or beyond the yield stress of a von Mises material), naming
+     * @p entry, or nothing.
+     */
+    template <int dim>
+    std::string
+    initial_stress(const FunctionParser<dim> &function,
+                   const Point<dim>          &point,
+                   const MaterialParameters  &material,
+                   const bool                 plane_strain,
+                   const std::string         &entry,
+                   std::vector<double>       &properties)
+    {
+      using Layout = MaterialPointLayout<dim>;
+      Vector<double> values(function.n_components);
+      function.vector_value(point, values);
+      SymmetricTensor<2, 3> stress;
+      if (dim == 2)
+        {
+          stress[0][0] = values[0];
+          stress[1][1] = values[1];
+          stress[0][1] = values[2];
+          stress[2][2] =
+            values.size() == 4 ? values[3] :
+            plane_strain ? material.poissons_ratio * (values[0] + values[1]) :
+                           0.;
+        }
+      else
+        {
+          stress[0][0] = values[0];
+          stress[1][1] = values[1];
+          stress[2][2] = values[2];
+          stress[0][1] = values[3];
+          stress[0][2] = values[4];
+          stress[1][2] = values[5];
+        }
+      std::ostringstream message;
+      for (unsigned int c = 0; c < values.size(); ++c)
+        if (!std::isfinite(values[c]))
+          {
+            message << "component " << c + 1 << " is " << values[c]
+                    << " at the point (" << point
+                    << "): the initial stress must be finite everywhere in "
+                       "the grain.";
+            return InputError(entry, message.str()).what();
+          }
+      if (material.constitutive_model == ConstitutiveModelType::von_mises)
+        {
+          const SymmetricTensor<2, 3> s          = deviator(stress);
+          const double                equivalent = std::sqrt(1.5 * (s * s));
+          if (equivalent > material.yield_stress * (1. + 1e-12))
+            {
+              message << "its von Mises stress " << equivalent
+                      << " at the point (" << point
+                      << ") is above the yield stress " << material.yield_stress
+                      << " of Materials/" << material.name
+                      << "/Yield stress: an initial stress must be "
+                         "admissible.";
+              return InputError(entry, message.str()).what();
+            }
+        }
+      Layout::set_stress(stress, make_array_view(properties));
+      return "";
+    }
+  } // namespace
 
 
 
@@ -109,6 +183,45 @@ namespace grainmpm
     std::vector<GrainInfo<dim>>                       info(n_grains);
     std::vector<std::shared_ptr<FunctionParser<dim>>> initial_velocities(
       n_grains);
+    // The grain's initial stress, else its material's, else none; the
+    // entry that gave it for the messages.
+    std::vector<std::shared_ptr<FunctionParser<dim>>> initial_stresses(
+      n_grains);
+    std::vector<std::string> stress_entries(n_grains);
+    const auto               parse_initial_stress = [&](const unsigned int g) {
+      const GrainParameters<dim> &grain = grains[g];
+      const MaterialParameters   &material =
+        parameters.materials[grain.material_index];
+      const bool         own = !grain.initial_stress.empty();
+      const std::string &text =
+        own ? grain.initial_stress : material.initial_stress;
+      if (text.empty())
+        return std::shared_ptr<FunctionParser<dim>>();
+      stress_entries[g] = (own ? grain.source : "Materials/" + material.name) +
+                          "/Initial stress = " + text;
+      if (grain.rigid)
+        {
+          if (own)
+            throw InputError(stress_entries[g],
+                             "a rigid grain carries no stress: remove the "
+                                           "entry or set Rigid = false.");
+          return std::shared_ptr<FunctionParser<dim>>();
+        }
+      const unsigned int n = Utilities::split_string_list(text, ';').size();
+      if (!(dim == 2 ? (n == 3 || n == 4) : n == 6))
+        throw InputError(stress_entries[g],
+                         std::string("needs ") +
+                           (dim == 2 ? "3 expressions (s_xx; s_yy; s_xy) or "
+                                                     "4 (s_xx; s_yy; s_xy; s_zz)" :
+                                                     "6 expressions (s_xx; s_yy; s_zz; "
+                                                     "s_xy; s_xz; s_yz)") +
+                           " separated by ';', not " + std::to_string(n) + ".");
+      return parse_vector_function<dim>(
+        text,
+        false,
+        stress_entries[g].substr(0, stress_entries[g].find(" = ")),
+        n);
+    };
     for (unsigned int g = 0; g < n_grains; ++g)
       {
         info[g].material = grains[g].material_index;
@@ -123,6 +236,7 @@ namespace grainmpm
                                        true,
                                        grains[g].source +
                                          "/Prescribed velocity");
+        initial_stresses[g] = parse_initial_stress(g);
       }
 
     // First pass: which grain owns each candidate point. A point claimed by
@@ -244,6 +358,19 @@ namespace grainmpm
             properties[Layout::velocity + d] = velocity[d];
             properties[Layout::deformation_gradient + dim * d + d] = 1.;
           }
+        if (initial_stresses[candidate.grain])
+          {
+            const std::string error =
+              initial_stress(*initial_stresses[candidate.grain],
+                             point,
+                             parameters.materials[grain.material_index],
+                             parameters.physics.two_dimensional_model ==
+                               TwoDimensionalModel::plane_strain,
+                             stress_entries[candidate.grain],
+                             properties);
+            if (!error.empty() && not_finite.empty())
+              not_finite = error;
+          }
         particle_handler.insert_particle(
           point, reference, first_id + c, cell, make_array_view(properties));
         info[candidate.grain].mass += density * volume;
@@ -278,9 +405,11 @@ namespace grainmpm
   template std::shared_ptr<FunctionParser<2>>
   parse_vector_function<2>(const std::string &,
                            const bool,
-                           const std::string &);
+                           const std::string &,
+                           const unsigned int);
   template std::shared_ptr<FunctionParser<3>>
   parse_vector_function<3>(const std::string &,
                            const bool,
-                           const std::string &);
+                           const std::string &,
+                           const unsigned int);
 } // namespace grainmpm

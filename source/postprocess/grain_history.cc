@@ -8,6 +8,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -15,13 +16,16 @@
 namespace grainmpm
 {
   template <int dim>
-  GrainHistory<dim>::GrainHistory(const std::string   &filename,
-                                  const unsigned int   n_grains,
-                                  const MPI_Comm       communicator,
-                                  const std::uintmax_t resume_length)
-    : n_grains(n_grains)
+  GrainHistory<dim>::GrainHistory(const std::string       &filename,
+                                  const std::vector<bool> &rigid,
+                                  const MPI_Comm           communicator,
+                                  const std::uintmax_t     resume_length)
+    : rigid(rigid)
+    , n_grains(rigid.size())
     , communicator(communicator)
     , filename(filename)
+    , rotations(rigid.size())
+    , last_angular_velocities(rigid.size())
   {
     open_history(file, filename, resume_length, communicator, [&]() {
       file << "time [T],grain [1],mass [M]";
@@ -36,7 +40,12 @@ namespace grainmpm
       else
         file << ",angular_velocity_x [1/T],angular_velocity_y "
                 "[1/T],angular_velocity_z [1/T]";
-      file << ",max_distance [L]\n" << std::flush;
+      file << ",max_distance [L]";
+      if (dim == 2)
+        file << ",rotation_z [1]";
+      else
+        file << ",rotation_x [1],rotation_y [1],rotation_z [1]";
+      file << ",coordination_number [1]\n" << std::flush;
     });
   }
 
@@ -69,33 +78,43 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler) const
   {
     using Layout = MaterialPointLayout<dim>;
-    // First moments: mass, m x, m v.
-    std::vector<double> sums(n_grains * (1 + 2 * dim), 0.);
+    // First moments: mass, m x, m v, m F.
+    const unsigned int  n_first = 1 + 2 * dim + dim * dim;
+    std::vector<double> sums(n_grains * n_first, 0.);
     for (const auto &particle : particle_handler)
       {
         const auto         properties = particle.get_properties();
         const unsigned int g          = Layout::get_grain(properties);
         const double       mass       = properties[Layout::mass];
-        double            *sum        = &sums[g * (1 + 2 * dim)];
+        double            *sum        = &sums[g * n_first];
         sum[0] += mass;
         for (unsigned int d = 0; d < dim; ++d)
           {
             sum[1 + d] += mass * particle.get_location()[d];
             sum[1 + dim + d] += mass * properties[Layout::velocity + d];
           }
+        for (unsigned int k = 0; k < dim * dim; ++k)
+          sum[1 + 2 * dim + k] +=
+            mass * properties[Layout::deformation_gradient + k];
       }
     Utilities::MPI::sum(sums, communicator, sums);
     std::vector<GrainMotion<dim>> motions(n_grains);
     for (unsigned int g = 0; g < n_grains; ++g)
       {
-        const double *sum = &sums[g * (1 + 2 * dim)];
+        const double *sum = &sums[g * n_first];
         motions[g].mass   = sum[0];
         if (sum[0] > 0.)
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              motions[g].centre_of_mass[d] = sum[1 + d] / sum[0];
-              motions[g].velocity[d]       = sum[1 + dim + d] / sum[0];
-            }
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                motions[g].centre_of_mass[d] = sum[1 + d] / sum[0];
+                motions[g].velocity[d]       = sum[1 + dim + d] / sum[0];
+              }
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                motions[g].deformation_gradient[i][j] =
+                  sum[1 + 2 * dim + dim * i + j] / sum[0];
+          }
       }
 
     // Second moments about the centre of mass: angular momentum L and the
@@ -166,14 +185,82 @@ namespace grainmpm
 
 
 
+  namespace
+  {
+    /** @p angle moved by whole turns to within half a turn of @p target. */
+    double
+    nearest_turn(const double angle, const double target)
+    {
+      const double turn = 2. * numbers::PI;
+      return angle + turn * std::round((target - angle) / turn);
+    }
+
+
+
+    /** The rotation vector (axis times angle) of the rotation part of F. */
+    Tensor<1, 3>
+    rotation_vector(const Tensor<2, 3> &F)
+    {
+      // Polar decomposition by the iteration R <- (R + R^{-T}) / 2.
+      Tensor<2, 3> R = F;
+      for (unsigned int k = 0; k < 50 && determinant(R) > 0.; ++k)
+        {
+          const Tensor<2, 3> next   = 0.5 * (R + transpose(invert(R)));
+          const double       change = (next - R).norm();
+          R                         = next;
+          if (change < 1e-14)
+            break;
+        }
+      const Tensor<1, 3> axis(
+        {R[2][1] - R[1][2], R[0][2] - R[2][0], R[1][0] - R[0][1]});
+      const double cosine = std::max(-1., std::min(1., 0.5 * (trace(R) - 1.)));
+      const double angle  = std::acos(cosine);
+      const double sine   = std::sin(angle);
+      return sine > 1e-12 ? (angle / (2. * sine)) * axis : 0.5 * axis;
+    }
+  } // namespace
+
+
+
+  template <int dim>
+  void
+  GrainHistory<dim>::update_rotations(
+    const std::vector<GrainMotion<dim>> &motions,
+    const double                         time)
+  {
+    const double interval = have_last ? time - last_time : 0.;
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        const Rotation &omega = motions[g].angular_velocity;
+        const Rotation  predicted =
+          rotations[g] + 0.5 * interval * (last_angular_velocities[g] + omega);
+        const Tensor<2, dim> &F = motions[g].deformation_gradient;
+        if (rigid[g] || motions[g].mass <= 0.)
+          rotations[g] = predicted;
+        else if constexpr (dim == 2)
+          rotations[g][0] =
+            nearest_turn(std::atan2(F[1][0] - F[0][1], F[0][0] + F[1][1]),
+                         predicted[0]);
+        else
+          rotations[g] = rotation_vector(F);
+        last_angular_velocities[g] = omega;
+      }
+    last_time = time;
+    have_last = true;
+  }
+
+
+
   template <int dim>
   void
   GrainHistory<dim>::write(
-    const Particles::ParticleHandler<dim> &particle_handler,
-    const double                           time)
+    const std::vector<GrainMotion<dim>> &motions,
+    const std::vector<unsigned int>     &coordination_numbers,
+    const double                         time,
+    const bool                           write_rows)
   {
-    const auto motions = compute(particle_handler);
-    if (!file.is_open())
+    update_rotations(motions, time);
+    if (!file.is_open() || !write_rows)
       return;
     // The rows of this time in one write: a run killed meanwhile leaves
     // whole rows.
@@ -188,7 +275,10 @@ namespace grainmpm
           rows << ',' << motions[g].velocity[d];
         for (unsigned int d = 0; d < (dim == 2 ? 1 : 3); ++d)
           rows << ',' << motions[g].angular_velocity[d];
-        rows << ',' << motions[g].max_distance << '\n';
+        rows << ',' << motions[g].max_distance;
+        for (unsigned int d = 0; d < (dim == 2 ? 1 : 3); ++d)
+          rows << ',' << rotations[g][d];
+        rows << ',' << coordination_numbers[g] << '\n';
       }
     file << std::flush;
     const std::string text = rows.str();

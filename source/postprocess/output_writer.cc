@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 
 namespace grainmpm
 {
@@ -248,9 +249,10 @@ namespace grainmpm
     const MPI_Comm communicator = grid.get_triangulation().get_communicator();
     std::string    error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      for (const std::string name : {"particles", "grid"})
+      for (const std::string name : {"particles", "grid", "contacts"})
         if (name == "particles" ? parameters.write_particles :
-                                  parameters.write_grid)
+            name == "grid"      ? parameters.write_grid :
+                                  parameters.write_contacts)
           {
             const std::string path = parameters.directory + "/" + name;
             std::error_code   code;
@@ -389,6 +391,102 @@ namespace grainmpm
     write_pvd(parameters.directory + "/grid.pvd",
               grid_records,
               grid.get_triangulation().get_communicator());
+  }
+
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::write_contacts(
+    const std::vector<GrainContactForce<dim>> &forces,
+    const std::vector<GrainMotion<dim>>       &motions,
+    const std::vector<bool>                   &rigid,
+    const double                               time,
+    const unsigned int                         index)
+  {
+    const MPI_Comm communicator = grid.get_triangulation().get_communicator();
+    const std::string name =
+      "contacts_" + Utilities::int_to_string(index, 5) + ".vtu";
+    const std::string path = parameters.directory + "/contacts/" + name;
+    write_vtu_files(
+      parameters.directory + "/contacts", "contact", communicator, [&]() {
+        if (Utilities::MPI::this_mpi_process(communicator) != 0)
+          return name;
+        // A line per contact, its forces as cell data: the
+        // few numbers are written as text.
+        std::ofstream out(path);
+        out << std::setprecision(9)
+            << "<?xml version=\"1.0\"?>\n"
+               "<VTKFile type=\"UnstructuredGrid\" "
+               "version=\"0.1\" byte_order=\"LittleEndian\">\n"
+               "<UnstructuredGrid>\n<FieldData>\n"
+               "<DataArray type=\"Float64\" Name=\"TIME\" "
+               "NumberOfTuples=\"1\" format=\"ascii\">"
+            << time
+            << "</DataArray>\n</FieldData>\n"
+               "<Piece NumberOfPoints=\""
+            << 2 * forces.size() << "\" NumberOfCells=\"" << forces.size()
+            << "\">\n<Points>\n<DataArray type=\"Float64\" "
+               "NumberOfComponents=\"3\" format=\"ascii\">\n";
+        for (const auto &force : forces)
+          {
+            const bool        a_rigid = rigid[force.grain_a];
+            const bool        b_rigid = rigid[force.grain_b];
+            const Point<dim> &start   = a_rigid ?
+                                          force.contact_point :
+                                          motions[force.grain_a].centre_of_mass;
+            const Point<dim> &end     = b_rigid ?
+                                          force.contact_point :
+                                          motions[force.grain_b].centre_of_mass;
+            for (const Point<dim> *p : {&start, &end})
+              for (unsigned int d = 0; d < 3; ++d)
+                out << (d < dim ? (*p)[d] : 0.) << (d < 2 ? ' ' : '\n');
+          }
+        out << "</DataArray>\n</Points>\n<Cells>\n"
+               "<DataArray type=\"Int64\" Name=\"connectivity\" "
+               "format=\"ascii\">\n";
+        for (unsigned int c = 0; c < forces.size(); ++c)
+          out << 2 * c << ' ' << 2 * c + 1 << '\n';
+        out << "</DataArray>\n<DataArray type=\"Int64\" "
+               "Name=\"offsets\" format=\"ascii\">\n";
+        for (unsigned int c = 0; c < forces.size(); ++c)
+          out << 2 * c + 2 << '\n';
+        out << "</DataArray>\n<DataArray type=\"UInt8\" "
+               "Name=\"types\" format=\"ascii\">\n";
+        for (unsigned int c = 0; c < forces.size(); ++c)
+          out << "3\n";
+        out << "</DataArray>\n</Cells>\n"
+               "<CellData Scalars=\"normal_force\">\n";
+        const auto write_field = [&](const char *field, const auto &value) {
+          out << "<DataArray type=\"Float64\" Name=\"" << field
+              << "\" format=\"ascii\">\n";
+          for (const auto &force : forces)
+            out << value(force) << '\n';
+          out << "</DataArray>\n";
+        };
+        using Force = GrainContactForce<dim>;
+        write_field("normal_force",
+                    [](const Force &f) { return f.normal_force; });
+        write_field("tangential_force",
+                    [](const Force &f) { return f.tangential_force; });
+        write_field("force_magnitude",
+                    [](const Force &f) { return f.force.norm(); });
+        write_field("mobilised_friction",
+                    [](const Force &f) { return f.mobilised_friction; });
+        write_field("slip_share", [](const Force &f) { return f.slip_share; });
+        write_field("grain_a", [](const Force &f) { return f.grain_a + 1.; });
+        write_field("grain_b", [](const Force &f) { return f.grain_b + 1.; });
+        out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n"
+               "</VTKFile>\n";
+        out.close();
+        if (!out)
+          throw std::runtime_error("write failed");
+        return name;
+      });
+    contact_records.emplace_back(time, "contacts/" + name);
+    write_pvd(parameters.directory + "/contacts.pvd",
+              contact_records,
+              communicator);
   }
 
 

@@ -36,7 +36,7 @@ namespace grainmpm
       {
         // Eqs. (8)-(10): strain from the (contact-corrected) v^n, then the
         // forces of eq. (7) from sigma^{n+1/2}, V^{n+1/2}.
-        statistics.n_contact_nodes += apply_constraints(velocities_old);
+        statistics.n_contact_nodes += apply_constraints(velocities_old, true);
         transfer.update_particle_states(particle_handler,
                                         velocities_old,
                                         dt,
@@ -48,7 +48,7 @@ namespace grainmpm
 
     integrate_grid_velocities(dt);
     copy_slot_vector(state.velocities_new, unconstrained_velocities);
-    statistics.n_contact_nodes += apply_constraints(state.velocities_new);
+    statistics.n_contact_nodes += apply_constraints(state.velocities_new, true);
     const auto [friction_work, boundary_work] =
       contact.constraint_work(layout,
                               state.masses,
@@ -86,7 +86,8 @@ namespace grainmpm
                                          state.momenta,
                                          velocities_old);
         contact.prescribe_rigid_velocities(layout, velocities_old, time + dt);
-        statistics.n_contact_nodes += apply_constraints(velocities_old);
+        // (The strain velocity only: no momentum changes hands here.)
+        statistics.n_contact_nodes += apply_constraints(velocities_old, false);
         transfer.update_particle_states(particle_handler,
                                         velocities_old,
                                         dt,
@@ -101,12 +102,20 @@ namespace grainmpm
 
   template <int dim>
   unsigned int
-  ExplicitLeapfrog<dim>::apply_constraints(VectorType &velocities)
+  ExplicitLeapfrog<dim>::apply_constraints(VectorType &velocities,
+                                           const bool  record)
   {
     const GrainFieldLayout<dim> &layout    = transfer.get_layout();
-    const unsigned int           n_contact = contact.apply_contact(
-      layout, state.masses, state.normals, velocities, &state.node_in_contact);
-    contact.apply_walls(layout, velocities);
+    ConstraintImpulses<dim>     *impulses  = record ? &state.impulses : nullptr;
+    const unsigned int           n_contact = contact.apply_contact(layout,
+                                                         state.masses,
+                                                         state.normals,
+                                                         velocities,
+                                                         &state.node_in_contact,
+                                                         0.,
+                                                         nullptr,
+                                                         impulses);
+    contact.apply_walls(layout, velocities, &state.masses, impulses);
     return n_contact;
   }
 

@@ -67,8 +67,11 @@ namespace grainmpm
                           state.masses,
                           state.normals,
                           velocities_old,
-                          &state.node_in_contact);
-    contact.apply_walls(layout, velocities_old);
+                          &state.node_in_contact,
+                          0.,
+                          nullptr,
+                          &state.impulses);
+    contact.apply_walls(layout, velocities_old, &state.masses, &state.impulses);
     copy_slot_vector(velocities_old, rigid_velocities);
     contact.prescribe_rigid_velocities(layout, rigid_velocities, time + dt);
 
@@ -128,8 +131,10 @@ namespace grainmpm
     // projected with the converged status.
     residual.evaluate(unknowns, final_residual, false, true);
     unknowns -= final_residual;
-    statistics.n_contact_nodes =
-      residual.project(unknowns, state.velocities_new, &state.node_in_contact);
+    statistics.n_contact_nodes = residual.project(unknowns,
+                                                  state.velocities_new,
+                                                  &state.node_in_contact,
+                                                  &state.impulses);
     theta_velocities.reinit(unknowns, true);
     residual.theta_velocities(state.velocities_new, theta_velocities);
     const GrainFieldLayout<dim> &layout       = transfer.get_layout();

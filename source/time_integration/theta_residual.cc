@@ -155,12 +155,14 @@ namespace grainmpm
   unsigned int
   ThetaResidual<dim>::project(const VectorType           &velocities,
                               VectorType                 &projected,
-                              std::vector<unsigned char> *node_in_contact) const
+                              std::vector<unsigned char> *node_in_contact,
+                              ConstraintImpulses<dim>    *impulses) const
   {
     copy_slot_vector(velocities, projected);
     return apply_projection(projected,
                             GrainContact<dim>::Reference::from_velocities,
-                            node_in_contact);
+                            node_in_contact,
+                            impulses);
   }
 
 
@@ -170,7 +172,8 @@ namespace grainmpm
   ThetaResidual<dim>::apply_projection(
     VectorType                                 &v,
     const typename GrainContact<dim>::Reference reference,
-    std::vector<unsigned char>                 *node_in_contact) const
+    std::vector<unsigned char>                 *node_in_contact,
+    ConstraintImpulses<dim>                    *impulses) const
   {
     // v -> (1 - theta) v^n + theta v, project, and back. The map is affine;
     // differences of velocities (Reference::zero) see its linear part,
@@ -184,8 +187,20 @@ namespace grainmpm
       for (unsigned int k = 0; k < n; ++k)
         v.local_element(k) = (1. - theta) * old_velocities->local_element(k) +
                              theta * v.local_element(k);
-    const unsigned int n_active = contact.apply_frozen(
-      *layout, *masses, *normals, status, reference, v, node_in_contact);
+    // The projection changes the theta velocity; the end velocity changes
+    // by that over theta.
+    if (impulses != nullptr)
+      impulses->scale = affine ? 1. / theta : 1.;
+    const unsigned int n_active = contact.apply_frozen(*layout,
+                                                       *masses,
+                                                       *normals,
+                                                       status,
+                                                       reference,
+                                                       v,
+                                                       node_in_contact,
+                                                       impulses);
+    if (impulses != nullptr)
+      impulses->scale = 1.;
     if (affine)
       for (unsigned int k = 0; k < n; ++k)
         v.local_element(k) = (v.local_element(k) -

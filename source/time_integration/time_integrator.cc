@@ -35,6 +35,7 @@ namespace grainmpm
     transfer.reinit(particle_handler);
     const GrainFieldLayout<dim> &layout = transfer.get_layout();
     state.node_in_contact.assign(layout.n_nodes(), 0);
+    state.impulses.clear();
     transfer.particles_to_grid(particle_handler,
                                &state.masses,
                                state.momenta,

@@ -17,7 +17,6 @@ namespace grainmpm
 {
   namespace
   {
-    const char *const face_names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
     const char *const boundary_type_names[4] = {"free slip",
                                                 "no slip",
                                                 "friction",
@@ -512,7 +511,7 @@ namespace grainmpm
               message << "particle " << particle->get_id() << " of grain "
                       << grain + 1 << " (" << parameters.grains[grain].source
                       << ") left the background grid through the closed face "
-                      << face_names[face] << " ("
+                      << face_name(face) << " ("
                       << boundary_type_names[static_cast<int>(condition.type)]
                       << ") at position (";
               for (unsigned int e = 0; e < dim; ++e)

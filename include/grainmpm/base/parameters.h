@@ -37,6 +37,14 @@ namespace grainmpm
     double       friction_coefficient = 0.;
   };
 
+  /** The name of box face @p face in the input: x-, x+, y-, y+, z-, z+. */
+  inline const char *
+  face_name(const unsigned int face)
+  {
+    static const char *const names[6] = {"x-", "x+", "y-", "y+", "z-", "z+"};
+    return names[face];
+  }
+
   /**
    * Subsection "Background grid": a box of Q1 cells.
    */
@@ -111,6 +119,8 @@ namespace grainmpm
     /** Photoelastic output: specimen thickness and material fringe value. */
     double thickness             = 1.;
     double material_fringe_value = 0.;
+    /** Expressions of the initial stress (empty: zero). */
+    std::string initial_stress;
 
     void
     declare(ParameterHandler &prm);
@@ -371,6 +381,7 @@ namespace grainmpm
     bool        write_particles     = true;
     bool        write_grid          = true;
     bool        write_grain_history = true;
+    bool        write_contacts      = true;
     bool        test_mode           = false;
 
     void

@@ -14,6 +14,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <array>
 #include <vector>
 
 namespace grainmpm
@@ -58,6 +59,52 @@ namespace grainmpm
 
     /** Whether any slot or wall entry is not free. */
     bool any_active = false;
+  };
+
+
+
+  /**
+   * The impulses that the constraints of one step gave the deformable
+   * grains, recorded by GrainContact::apply_contact(), apply_walls() and
+   * apply_frozen() when they are given one, at the nodes this rank owns:
+   * per box face, and per contact node and pair of grains. The impulse on
+   * a slot is its mass times the change the constraint made to its
+   * velocity, times #scale.
+   */
+  template <int dim>
+  struct ConstraintImpulses
+  {
+    /** One pair of grains at one contact node. */
+    struct Pair
+    {
+      /** The two grains, grain_a < grain_b. */
+      unsigned int grain_a = 0;
+      unsigned int grain_b = 0;
+      /** The impulse on grain_b from grain_a. */
+      Tensor<1, dim> impulse;
+      /** The unit contact normal at the node, out of grain_a. */
+      Tensor<1, dim> normal;
+      /** Where: the node. */
+      Point<dim> position;
+    };
+
+    /**
+     * From velocity changes to impulses on the end velocity: 1, or
+     * 1 / theta where the constraints act on v^theta.
+     */
+    double scale = 1.;
+    /** The impulse each box face (x-, x+, y-, ...) gave the grains. */
+    std::array<Tensor<1, dim>, 2 * dim> walls;
+    /** Contact between grains, rigid grains included. */
+    std::vector<Pair> pairs;
+
+    /** Forget everything recorded (#scale stays). */
+    void
+    clear()
+    {
+      walls.fill(Tensor<1, dim>());
+      pairs.clear();
+    }
   };
 
 
@@ -172,7 +219,7 @@ namespace grainmpm
      * number. If
      * @p status is given, records the states decided (a field corrected in
      * any pass keeps the state of its last correction) and the partner
-     * velocities.
+     * velocities; if @p impulses is given, the impulses of the corrections.
      */
     unsigned int
     apply_contact(const GrainFieldLayout<dim> &layout,
@@ -181,15 +228,19 @@ namespace grainmpm
                   VectorType                  &velocities,
                   std::vector<unsigned char>  *node_in_contact,
                   const double                 mass_threshold = 0.,
-                  ContactStatus<dim>          *status         = nullptr) const;
+                  ContactStatus<dim>          *status         = nullptr,
+                  ConstraintImpulses<dim>     *impulses       = nullptr) const;
 
     /**
      * Apply the wall conditions of the box faces to the deformable fields
-     * at boundary nodes, face after face, deciding the states.
+     * at boundary nodes, face after face, deciding the states; with
+     * @p impulses, add what each face gave the slots of @p masses.
      */
     void
     apply_walls(const GrainFieldLayout<dim> &layout,
-                VectorType                  &velocities) const;
+                VectorType                  &velocities,
+                const VectorType            *masses   = nullptr,
+                ConstraintImpulses<dim>     *impulses = nullptr) const;
 
     /**
      * Size @p status for @p layout: every slot free, one wall entry per
@@ -217,7 +268,8 @@ namespace grainmpm
      * Apply the frozen @p status to @p velocities in place: contact at the
      * nodes with a constrained slot, with v_ref taken as @p reference
      * says, then the walls. Flags the nodes where contact is active in
-     * @p node_in_contact (if given) and returns their number.
+     * @p node_in_contact (if given) and returns their number. With
+     * @p impulses, records the impulses of contact and walls.
      */
     unsigned int
     apply_frozen(const GrainFieldLayout<dim> &layout,
@@ -226,7 +278,8 @@ namespace grainmpm
                  const ContactStatus<dim>    &status,
                  const Reference              reference,
                  VectorType                  &velocities,
-                 std::vector<unsigned char>  *node_in_contact = nullptr) const;
+                 std::vector<unsigned char>  *node_in_contact = nullptr,
+                 ConstraintImpulses<dim>     *impulses        = nullptr) const;
 
     /**
      * The work of the constraints that changed @p before into @p after
@@ -354,6 +407,25 @@ namespace grainmpm
     }
 
   private:
+    /**
+     * Add the contact impulses of the fields @p fields_begin.. of @p node
+     * (@p n of them, with @p masses and @p normals, rigid as @p rigid)
+     * that changed @p before into @p after to @p impulses, one entry per
+     * pair of grains: a deformable grain against the node's rigid grain
+     * if it has one, else each pair of deformable grains, whose impulse is
+     * shared by the partners' masses when three or more meet.
+     */
+    void
+    record_impulses(const GrainFieldLayout<dim> &layout,
+                    const unsigned int           node,
+                    const unsigned int           n,
+                    const double                *masses,
+                    const bool                  *rigid,
+                    const Tensor<1, dim>        *normals,
+                    const Tensor<1, dim>        *before,
+                    const Tensor<1, dim>        *after,
+                    ConstraintImpulses<dim>     &impulses) const;
+
     /**
      * The approach speeds the gaps allow the @p n fields of a contact node
      * (slots @p begin.. with @p masses, @p rigid and @p normals) into

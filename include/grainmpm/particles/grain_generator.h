@@ -65,7 +65,8 @@ namespace grainmpm
   };
 
   /**
-   * Parse @p expressions (dim expressions separated by ';') into a vector
+   * Parse @p expressions (@p n_components expressions separated by ';')
+   * into a vector
    * function of x, y (, z) and, if @p time_dependent, t. Throws InputError
    * naming @p entry on a syntax error.
    */
@@ -73,7 +74,8 @@ namespace grainmpm
   std::shared_ptr<FunctionParser<dim>>
   parse_vector_function(const std::string &expressions,
                         const bool         time_dependent,
-                        const std::string &entry);
+                        const std::string &entry,
+                        const unsigned int n_components = dim);
 } // namespace grainmpm
 
 #endif

@@ -47,9 +47,11 @@ namespace grainmpm
     std::vector<dealii::Point<dim>> vertices;
     std::string                     material;
     std::string                     initial_velocity;
-    bool                            rigid = false;
-    std::string                     prescribed_velocity;
-    unsigned int                    material_index = 0;
+    /** Expressions of the initial stress (empty: the material's). */
+    std::string  initial_stress;
+    bool         rigid = false;
+    std::string  prescribed_velocity;
+    unsigned int material_index = 0;
 
     GrainParameters();
     void

@@ -7,6 +7,8 @@
 #include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
+#include <grainmpm/postprocess/contact_history.h>
+#include <grainmpm/postprocess/grain_history.h>
 #include <grainmpm/time_integration/time_integrator.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -68,12 +70,26 @@ namespace grainmpm
                const double               time,
                const unsigned int         index);
 
+    /**
+     * Write the force chains of @p forces at @p time as output number
+     * @p index (rank 0 has the forces): a line per pair of grains from
+     * centre to centre (@p motions), or from the deformable grain's centre
+     * to the contact point if the partner is rigid, with the pair's forces
+     * as cell data. Collective.
+     */
+    void
+    write_contacts(const std::vector<GrainContactForce<dim>> &forces,
+                   const std::vector<GrainMotion<dim>>       &motions,
+                   const std::vector<bool>                   &rigid,
+                   const double                               time,
+                   const unsigned int                         index);
+
     /** Checkpoint the .pvd records. */
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &particle_records &grid_records;
+      archive &particle_records &grid_records &contact_records;
     }
 
   private:
@@ -84,6 +100,7 @@ namespace grainmpm
     DoFHandler<dim>                             vector_dof_handler;
     std::vector<std::pair<double, std::string>> particle_records;
     std::vector<std::pair<double, std::string>> grid_records;
+    std::vector<std::pair<double, std::string>> contact_records;
   };
 } // namespace grainmpm
 

@@ -60,9 +60,13 @@ namespace grainmpm
     }
 
   private:
-    /** Contact and walls on @p velocities; returns the contact nodes. */
+    /**
+     * Contact and walls on @p velocities; returns the contact nodes. With
+     * @p record, the impulses go into the step's GridState::impulses (the
+     * velocity changes that the particles receive).
+     */
     unsigned int
-    apply_constraints(VectorType &velocities);
+    apply_constraints(VectorType &velocities, const bool record);
 
     /** v^L = v + dt f / m on deformable slots. */
     void

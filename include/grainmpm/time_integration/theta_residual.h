@@ -169,12 +169,15 @@ namespace grainmpm
     /**
      * The contact- and wall-projected end velocities Pi_theta(@p
      * velocities) with the frozen status: the projection acts on the theta
-     * velocity. Returns the number of nodes where contact is active.
+     * velocity. Returns the number of nodes where contact is active. With
+     * @p impulses, adds the impulses the projection gives the end
+     * velocities.
      */
     unsigned int
     project(const VectorType           &velocities,
             VectorType                 &projected,
-            std::vector<unsigned char> *node_in_contact = nullptr) const;
+            std::vector<unsigned char> *node_in_contact = nullptr,
+            ConstraintImpulses<dim>    *impulses        = nullptr) const;
 
     /**
      * The diagonal of the simplified Jacobian dR/dV at @p velocities by
@@ -215,12 +218,14 @@ namespace grainmpm
      * Frozen contact, then frozen walls, on the end velocities @p v in
      * place, acting on the theta velocity (1 - theta) v^n + theta v; with
      * GrainContact::Reference::zero the linear part of that map, which
-     * acts on differences of velocities directly.
+     * acts on differences of velocities directly. Records @p impulses
+     * if given.
      */
     unsigned int
     apply_projection(VectorType                                 &v,
                      const typename GrainContact<dim>::Reference reference,
-                     std::vector<unsigned char> *node_in_contact) const;
+                     std::vector<unsigned char> *node_in_contact,
+                     ConstraintImpulses<dim>    *impulses = nullptr) const;
 
     /** The communicator of the grid. */
     MPI_Comm

@@ -54,6 +54,13 @@ namespace grainmpm
     VectorType velocities_new;
     /** 1 for nodes where contact corrected a field in the step. */
     std::vector<unsigned char> node_in_contact;
+    /**
+     * The impulses the contact, wall and rigid-grain constraints of the
+     * step gave the deformable grains, at the nodes this rank owns: their
+     * sum over the step is the change of the grains' momentum that the
+     * forces and gravity do not make.
+     */
+    ConstraintImpulses<dim> impulses;
   };
 
 
@@ -63,7 +70,7 @@ namespace grainmpm
    * positions at @p time: shape functions and slots (@p transfer),
    * particle to grid of mass, volume, momentum and mass gradient, v^n =
    * p / m with the rigid slots at their prescribed velocity, and the
-   * contact normals and gaps (@p contact).
+   * contact normals and gaps (@p contact); no impulses recorded yet.
    */
   template <int dim>
   void
@@ -126,6 +133,13 @@ namespace grainmpm
     get_node_contact_flags() const
     {
       return get_grid_state().node_in_contact;
+    }
+
+    /** The constraint impulses of the last step (this rank's nodes). */
+    const ConstraintImpulses<dim> &
+    get_impulses() const
+    {
+      return get_grid_state().impulses;
     }
   };
 } // namespace grainmpm

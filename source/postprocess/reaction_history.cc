@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/postprocess/history_file.h>
+#include <grainmpm/postprocess/reaction_history.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace grainmpm
+{
+  namespace
+  {
+    /** Number of torque components: 1 in 2D (z), 3 in 3D. */
+    template <int dim>
+    constexpr unsigned int n_torque = (dim == 2 ? 1 : 3);
+  } // namespace
+
+
+
+  template <int dim>
+  ReactionHistory<dim>::ReactionHistory(
+    const std::string                 &filename,
+    const BackgroundGrid<dim>         &grid,
+    const std::vector<GrainInfo<dim>> &grains,
+    const std::vector<Point<dim>>     &initial_centres,
+    const MPI_Comm                     communicator,
+    const std::uintmax_t               resume_length)
+    : grid(grid)
+    , grains(grains)
+    , communicator(communicator)
+    , filename(filename)
+  {
+    for (unsigned int face = 0; face < 2 * dim; ++face)
+      if (grid.boundary_condition(face).type != BoundaryType::open)
+        faces.push_back(face);
+    for (unsigned int g = 0; g < grains.size(); ++g)
+      if (grains[g].rigid)
+        {
+          rigid_grains.push_back(g);
+          centres.push_back(initial_centres[g]);
+        }
+
+    const std::string force  = (dim == 2 ? "M L/T^2 per L" : "M L/T^2");
+    const std::string torque = (dim == 2 ? "M L^2/T^2 per L" : "M L^2/T^2");
+    open_history(file, filename, resume_length, communicator, [&]() {
+      file << "step,time [T],dt [T]";
+      for (const unsigned int face : faces)
+        for (unsigned int d = 0; d < dim; ++d)
+          file << ",wall_" << face_name(face) << "_force_"
+               << "xyz"[d] << " [" << force << "]";
+      for (const unsigned int g : rigid_grains)
+        {
+          for (unsigned int d = 0; d < dim; ++d)
+            file << ",grain_" << g + 1 << "_force_"
+                 << "xyz"[d] << " [" << force << "]";
+          for (unsigned int d = 0; d < n_torque<dim>; ++d)
+            file << ",grain_" << g + 1 << "_torque_"
+                 << (dim == 2 ? 'z' : "xyz"[d]) << " [" << torque << "]";
+        }
+      file << "\n" << std::flush;
+    });
+  }
+
+
+
+  template <int dim>
+  std::uintmax_t
+  ReactionHistory<dim>::length()
+  {
+    if (!file.is_open())
+      return 0;
+    file.flush();
+    return std::filesystem::file_size(filename);
+  }
+
+
+
+  template <int dim>
+  void
+  ReactionHistory<dim>::check_written() const
+  {
+    check_history_file(file, filename, communicator);
+  }
+
+
+
+  template <int dim>
+  void
+  ReactionHistory<dim>::write_row(const unsigned int             step,
+                                  const double                   time,
+                                  const double                   dt,
+                                  const ConstraintImpulses<dim> &impulses)
+  {
+    // What the grains gave each wall and rigid grain: minus what they got.
+    const unsigned int  per_rigid = dim + n_torque<dim>;
+    std::vector<double> sums(faces.size() * dim +
+                               rigid_grains.size() * per_rigid,
+                             0.);
+    for (unsigned int f = 0; f < faces.size(); ++f)
+      for (unsigned int d = 0; d < dim; ++d)
+        sums[f * dim + d] = -impulses.walls[faces[f]][d];
+    if (!rigid_grains.empty())
+      {
+        std::vector<int> rigid_index(grains.size(), -1);
+        for (unsigned int r = 0; r < rigid_grains.size(); ++r)
+          rigid_index[rigid_grains[r]] = r;
+        for (const auto &pair : impulses.pairs)
+          {
+            // Contact impulses only act on deformable slots: one of the two
+            // grains at most is rigid.
+            const int r =
+              std::max(rigid_index[pair.grain_a], rigid_index[pair.grain_b]);
+            if (r < 0)
+              continue;
+            const Tensor<1, dim> on_rigid =
+              rigid_index[pair.grain_b] >= 0 ? pair.impulse : -pair.impulse;
+            const Tensor<1, dim> arm = pair.position - centres[r];
+            double *sum = &sums[faces.size() * dim + r * per_rigid];
+            for (unsigned int d = 0; d < dim; ++d)
+              sum[d] += on_rigid[d];
+            if (dim == 2)
+              sum[dim] += arm[0] * on_rigid[1] - arm[1] * on_rigid[0];
+            else
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  const unsigned int e = (d + 1) % 3, f = (d + 2) % 3;
+                  sum[dim + d] += arm[e] * on_rigid[f] - arm[f] * on_rigid[e];
+                }
+          }
+      }
+    if (!sums.empty())
+      Utilities::MPI::sum(sums, communicator, sums);
+
+    if (file.is_open())
+      {
+        std::ostringstream row;
+        row << step << ',' << std::setprecision(12) << time << ',' << dt
+            << std::setprecision(9);
+        // (+ 0. prints a zero without its sign.)
+        for (const double sum : sums)
+          row << ',' << sum / dt + 0.;
+        row << '\n';
+        file << row.str() << std::flush;
+      }
+
+    // The centres move as the rigid grains' points do (midpoint rule).
+    Vector<double> velocity(dim);
+    for (unsigned int r = 0; r < rigid_grains.size(); ++r)
+      {
+        FunctionParser<dim> &function =
+          *grains[rigid_grains[r]].prescribed_velocity;
+        function.set_time(time - 0.5 * dt);
+        function.vector_value(centres[r], velocity);
+        for (unsigned int d = 0; d < dim; ++d)
+          centres[r][d] += dt * velocity[d];
+      }
+  }
+
+
+
+  template class ReactionHistory<2>;
+  template class ReactionHistory<3>;
+} // namespace grainmpm

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// Materials/<name>/Initial stress: a block (1 x 0.4, rho = 1, E = 1000,
+// nu = 0.3, plane strain) fills the width of the box between free-slip
+// walls on a free-slip floor under g = 10. The lithostatic state
+// s_yy = -rho g (H - y), s_xx = nu / (1 - nu) s_yy is its equilibrium
+// under gravity: started from it, the block stays at rest (largest kinetic
+// energy below 1e-12 of the elastic energy, in both schemes). Started
+// without it, the block falls onto the floor and vibrates: its kinetic
+// energy reaches a fair part of the elastic energy it settles to. A grain's
+// own Initial stress replaces its material's.
+
+#include "../tests.h"
+
+#include "../energy_csv.h"
+
+using namespace grainmpm;
+
+namespace
+{
+  double
+  largest_kinetic_over_elastic(const std::string &name,
+                               const bool         implicit,
+                               const std::string &material_stress,
+                               const std::string &grain_stress)
+  {
+    const auto energy = run_case(
+      name,
+      "set Dimension = 2\n"
+      "subsection Background grid\n  set Upper corner = 1, 1\n"
+      "  set Number of cells = 20, 20\n"
+      "  set Boundary conditions = x-: free slip, x+: free slip, "
+      "y-: free slip, y+: open\nend\n"
+      "subsection Physics\n  set Gravity = 0, -10\nend\n"
+      "subsection Materials\n  subsection elastic\n    set Density = 1\n"
+      "    set Young's modulus = 1000\n    set Poisson's ratio = 0.3\n"
+      "    set Initial stress = " +
+        material_stress +
+        "\n  end\nend\n"
+        "subsection Grains\n  subsection Block\n    set Shape = rectangle\n"
+        "    set Centre = 0.5, 0.2\n    set Size = 1, 0.4\n"
+        "    set Material = elastic\n    set Initial stress = " +
+        grain_stress + "\n  end\nend\n" +
+        "subsection Time stepping\n  set End time = 1\n" +
+        (implicit ? "  set Scheme = implicit theta\n  set CFL number = 2\n" :
+                    "") +
+        "end\n");
+    double largest_kinetic = 0., largest_elastic = 0.;
+    for (unsigned int i = 0; i < energy.at("time").size(); ++i)
+      {
+        largest_kinetic =
+          std::max(largest_kinetic, energy.at("kinetic_energy")[i]);
+        largest_elastic =
+          std::max(largest_elastic, energy.at("elastic_energy")[i]);
+      }
+    return largest_kinetic / largest_elastic;
+  }
+} // namespace
+
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  const std::string lithostatic = "-10*(0.4 - y)*0.3/0.7; -10*(0.4 - y); 0";
+  for (const bool implicit : {false, true})
+    {
+      const std::string scheme = implicit ? "implicit" : "explicit";
+      const double rest = largest_kinetic_over_elastic("lithostatic_" + scheme,
+                                                       implicit,
+                                                       lithostatic,
+                                                       "");
+      const double from_grain = largest_kinetic_over_elastic("grain_" + scheme,
+                                                             implicit,
+                                                             "0; 0; 0",
+                                                             lithostatic);
+      const double unstressed =
+        largest_kinetic_over_elastic("unstressed_" + scheme, implicit, "", "");
+      deallog << scheme << ": largest E_kin / E_el, lithostatic start: "
+              << (rest < 1e-12 ? "below 1e-12" : "ABOVE 1e-12")
+              << ", given by the grain: "
+              << (from_grain < 1e-12 ? "below 1e-12" : "ABOVE 1e-12")
+              << ", unstressed start: " << std::setprecision(2) << unstressed
+              << std::endl;
+    }
+}
