@@ -54,15 +54,19 @@ read_energy(const std::string &directory)
 
 /**
  * Run @p text (2D) as NAME.prm in test mode without particle and grid
- * output, writing into results-NAME; return its energy.csv columns.
+ * output, writing into results-NAME, on every rank of MPI_COMM_WORLD;
+ * return its energy.csv columns.
  */
 inline std::map<std::string, std::vector<double>>
 run_case(const std::string &name, const std::string &text)
 {
-  std::ofstream(name + ".prm")
-    << text << "\nsubsection Output\n  set Output directory = results-" << name
-    << "\n  set Test mode = true\n  set Write particles = false\n"
-    << "  set Write grid = false\nend\n";
+  // One rank writes the file, the others wait for it.
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::ofstream(name + ".prm")
+      << text << "\nsubsection Output\n  set Output directory = results-"
+      << name << "\n  set Test mode = true\n  set Write particles = false\n"
+      << "  set Write grid = false\nend\n";
+  MPI_Barrier(MPI_COMM_WORLD);
   grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
   return read_energy("results-" + name);
 }

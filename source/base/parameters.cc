@@ -242,19 +242,11 @@ namespace grainmpm
                       "about 23 kN/m). 0 means not photoelastic: the fringe "
                       "order is written as 0. Units: stress length.",
                       Patterns::Double(0.));
-    prm.add_parameter(
-      "Initial stress",
-      initial_stress,
-      "Stress of the material points at the start, as expressions of "
-      "x, y (, z) separated by ';' (tension positive): in 2D "
-      "'s_xx; s_yy; s_xy' (then s_zz = nu (s_xx + s_yy) in "
-      "plane strain and 0 in plane stress) or 's_xx; s_yy; "
-      "s_xy; s_zz', in 3D 's_xx; s_yy; s_zz; s_xy; s_xz; "
-      "s_yz'; e.g. the lithostatic state of "
-      "a layer of height 1 with rho g = 1 and K0 = 0.5: "
-      "'-0.5*(1 - y); -(1 - y); 0'. "
-      "The grains of this material start with it unless they "
-      "give their own; empty: zero. Units: stress.");
+    prm.add_parameter("Initial stress",
+                      initial_stress,
+                      initial_stress_syntax() +
+                        "The grains of this material start with it unless they "
+                        "give their own; empty: zero. Units: stress.");
   }
 
 

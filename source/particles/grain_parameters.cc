@@ -71,19 +71,11 @@ namespace grainmpm
                       "expression of the coordinates x, y (, z) per "
                       "component, separated by ';' (deal.II FunctionParser "
                       "syntax, e.g. '0.1; -0.2*x'). Units: length/time.");
-    prm.add_parameter(
-      "Initial stress",
-      initial_stress,
-      "Stress of the material points at the start, as expressions of "
-      "x, y (, z) separated by ';' (tension positive): in 2D "
-      "'s_xx; s_yy; s_xy' (then s_zz = nu (s_xx + s_yy) in "
-      "plane strain and 0 in plane stress) or 's_xx; s_yy; "
-      "s_xy; s_zz', in 3D 's_xx; s_yy; s_zz; s_xy; s_xz; "
-      "s_yz'; e.g. the lithostatic state of "
-      "a layer of height 1 with rho g = 1 and K0 = 0.5: "
-      "'-0.5*(1 - y); -(1 - y); 0'. "
-      "Empty: the material's Initial stress. Not for rigid "
-      "grains. Units: stress.");
+    prm.add_parameter("Initial stress",
+                      initial_stress,
+                      initial_stress_syntax() +
+                        "Empty: the material's Initial stress. Not for rigid "
+                        "grains. Units: stress.");
     prm.add_parameter("Rigid",
                       rigid,
                       "If true, the grain is a rigid body that moves with the "

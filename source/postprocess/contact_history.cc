@@ -54,23 +54,23 @@ namespace grainmpm
                                       const std::uintmax_t resume_length)
     : friction_coefficient(friction_coefficient)
     , communicator(communicator)
-    , filename(filename)
+    , file(filename, communicator)
   {
     const std::string force = (dim == 2 ? "M L/T^2 per L" : "M L/T^2");
-    open_history(file, filename, resume_length, communicator, [&]() {
-      file << "time [T],grain_a [1],grain_b [1],normal_force [" << force
-           << "],tangential_force [" << force << "]";
+    file.open(resume_length, [&](std::ofstream &out) {
+      out << "time [T],grain_a [1],grain_b [1],normal_force [" << force
+          << "],tangential_force [" << force << "]";
       for (unsigned int d = 0; d < dim; ++d)
-        file << ",force_"
-             << "xyz"[d] << " [" << force << "]";
+        out << ",force_"
+            << "xyz"[d] << " [" << force << "]";
       for (unsigned int d = 0; d < dim; ++d)
-        file << ",contact_"
-             << "xyz"[d] << " [L]";
+        out << ",contact_"
+            << "xyz"[d] << " [L]";
       for (unsigned int d = 0; d < dim; ++d)
-        file << ",normal_"
-             << "xyz"[d] << " [1]";
-      file << ",mobilised_friction [1],slip_share [1],sliding [1]\n"
-           << std::flush;
+        out << ",normal_"
+            << "xyz"[d] << " [1]";
+      out << ",mobilised_friction [1],slip_share [1],sliding [1]\n"
+          << std::flush;
     });
   }
 
@@ -80,10 +80,7 @@ namespace grainmpm
   std::uintmax_t
   ContactHistory<dim>::length()
   {
-    if (!file.is_open())
-      return 0;
-    file.flush();
-    return std::filesystem::file_size(filename);
+    return file.length();
   }
 
 
@@ -93,7 +90,8 @@ namespace grainmpm
   ContactHistory<dim>::add_step(const ConstraintImpulses<dim> &impulses)
   {
     for (const auto &pair : impulses.pairs)
-      sums[{pair.grain_a, pair.grain_b}].add(pair, friction_coefficient);
+      local_sums[(std::uint64_t(pair.grain_a) << 32) | pair.grain_b].add(
+        pair, friction_coefficient);
   }
 
 
@@ -102,11 +100,21 @@ namespace grainmpm
   void
   ContactHistory<dim>::gather_sums()
   {
-    const auto all = Utilities::MPI::gather(communicator, sums, 0);
-    sums.clear();
-    for (const auto &rank_sums : all)
-      for (const auto &[pair, pair_sums] : rank_sums)
-        sums[pair].add(pair_sums);
+    std::vector<std::pair<std::uint64_t, PairImpulseSums<dim>>> mine(
+      local_sums.begin(), local_sums.end());
+    local_sums.clear();
+    const auto merge = [this](const auto &rank_sums) {
+      for (const auto &[key, pair_sums] : rank_sums)
+        sums[{static_cast<unsigned int>(key >> 32),
+              static_cast<unsigned int>(key & 0xffffffffU)}]
+          .add(pair_sums);
+    };
+    if (Utilities::MPI::n_mpi_processes(communicator) == 1)
+      merge(mine);
+    else
+      for (const auto &rank_sums :
+           Utilities::MPI::gather(communicator, mine, 0))
+        merge(rank_sums);
   }
 
 
@@ -172,11 +180,9 @@ namespace grainmpm
             rows << ',' << force.mobilised_friction << ',' << force.slip_share
                  << ',' << (force.slip_share > 0.5 ? 1 : 0) << '\n';
           }
-        const std::string text = rows.str();
-        file.write(text.data(), text.size());
-        file.flush();
+        file.append(rows.str());
       }
-    check_history_file(file, filename, communicator);
+    file.check_written();
   }
 
 

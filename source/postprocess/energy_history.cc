@@ -22,31 +22,31 @@ namespace grainmpm
     const MPI_Comm                                              communicator,
     const std::uintmax_t                                        resume_length)
     : gravity(gravity)
-    , filename(filename)
     , grains(grains)
     , materials(materials)
     , communicator(communicator)
+    , file(filename, communicator)
   {
     const std::string energy  = (dim == 2 ? "M L^2/T^2 per L" : "M L^2/T^2");
     const std::string impulse = (dim == 2 ? "M L/T per L" : "M L/T");
-    open_history(file, filename, resume_length, communicator, [&]() {
-      file << "step,time [T],dt [T],kinetic_energy [" << energy
-           << "],elastic_energy [" << energy << "],total_energy [" << energy
-           << "]";
+    file.open(resume_length, [&](std::ofstream &out) {
+      out << "step,time [T],dt [T],kinetic_energy [" << energy
+          << "],elastic_energy [" << energy << "],total_energy [" << energy
+          << "]";
       // The total is kinetic + elastic + gravity_potential (further right).
 
       for (unsigned int d = 0; d < dim; ++d)
-        file << ",momentum_"
-             << "xyz"[d] << " [" << impulse << "]";
-      file << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
-              "linear_iterations [1],residual_evaluations [1],"
-              "residual_rms [1],rejected_steps [1],grid_energy_change ["
-           << energy << "],transfer_energy_change [" << energy
-           << "],gravity_potential [" << energy << "],plastic_work [" << energy
-           << "],friction_work [" << energy << "],boundary_work [" << energy
-           << "],transfer_work [" << energy << "],balance_residual [" << energy
-           << "]\n"
-           << std::flush;
+        out << ",momentum_"
+            << "xyz"[d] << " [" << impulse << "]";
+      out << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
+             "linear_iterations [1],residual_evaluations [1],"
+             "residual_rms [1],rejected_steps [1],grid_energy_change ["
+          << energy << "],transfer_energy_change [" << energy
+          << "],gravity_potential [" << energy << "],plastic_work [" << energy
+          << "],friction_work [" << energy << "],boundary_work [" << energy
+          << "],transfer_work [" << energy << "],balance_residual [" << energy
+          << "]\n"
+          << std::flush;
     });
   }
 
@@ -56,7 +56,7 @@ namespace grainmpm
   void
   EnergyHistory<dim>::check_written() const
   {
-    check_history_file(file, filename, communicator);
+    file.check_written();
   }
 
 
@@ -65,10 +65,7 @@ namespace grainmpm
   std::uintmax_t
   EnergyHistory<dim>::length()
   {
-    if (!file.is_open())
-      return 0;
-    file.flush();
-    return std::filesystem::file_size(filename);
+    return file.length();
   }
 
 
@@ -124,22 +121,23 @@ namespace grainmpm
   {
     if (!file.is_open())
       return;
-    file << step << ',' << std::setprecision(10) << time << ',' << dt << ','
-         << std::setprecision(12) << summary.kinetic << ',' << summary.elastic
-         << ',' << summary.total();
+    std::ofstream &out = file.stream();
+    out << step << ',' << std::setprecision(10) << time << ',' << dt << ','
+        << std::setprecision(12) << summary.kinetic << ',' << summary.elastic
+        << ',' << summary.total();
     for (unsigned int d = 0; d < dim; ++d)
-      file << ',' << summary.momentum[d];
-    file << ',' << statistics.n_contact_nodes << ',' << statistics.n_removed
-         << ',' << statistics.newton_iterations << ','
-         << statistics.linear_iterations << ','
-         << statistics.residual_evaluations << ',' << std::setprecision(4)
-         << statistics.residual_norm << ',' << statistics.rejected << ','
-         << std::setprecision(12) << statistics.grid_energy_change << ','
-         << statistics.transfer_energy_change << ',' << summary.gravity << ','
-         << ledger.plastic_work << ',' << ledger.friction_work << ','
-         << ledger.boundary_work << ',' << ledger.transfer << ','
-         << ledger.balance(summary, initial) << '\n'
-         << std::flush;
+      out << ',' << summary.momentum[d];
+    out << ',' << statistics.n_contact_nodes << ',' << statistics.n_removed
+        << ',' << statistics.newton_iterations << ','
+        << statistics.linear_iterations << ','
+        << statistics.residual_evaluations << ',' << std::setprecision(4)
+        << statistics.residual_norm << ',' << statistics.rejected << ','
+        << std::setprecision(12) << statistics.grid_energy_change << ','
+        << statistics.transfer_energy_change << ',' << summary.gravity << ','
+        << ledger.plastic_work << ',' << ledger.friction_work << ','
+        << ledger.boundary_work << ',' << ledger.transfer << ','
+        << ledger.balance(summary, initial) << '\n'
+        << std::flush;
   }
 
 

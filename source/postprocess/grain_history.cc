@@ -23,29 +23,29 @@ namespace grainmpm
     : rigid(rigid)
     , n_grains(rigid.size())
     , communicator(communicator)
-    , filename(filename)
+    , file(filename, communicator)
     , rotations(rigid.size())
     , last_angular_velocities(rigid.size())
   {
-    open_history(file, filename, resume_length, communicator, [&]() {
-      file << "time [T],grain [1],mass [M]";
+    file.open(resume_length, [&](std::ofstream &out) {
+      out << "time [T],grain [1],mass [M]";
       for (unsigned int d = 0; d < dim; ++d)
-        file << ",centre_"
-             << "xyz"[d] << " [L]";
+        out << ",centre_"
+            << "xyz"[d] << " [L]";
       for (unsigned int d = 0; d < dim; ++d)
-        file << ",velocity_"
-             << "xyz"[d] << " [L/T]";
+        out << ",velocity_"
+            << "xyz"[d] << " [L/T]";
       if (dim == 2)
-        file << ",angular_velocity_z [1/T]";
+        out << ",angular_velocity_z [1/T]";
       else
-        file << ",angular_velocity_x [1/T],angular_velocity_y "
-                "[1/T],angular_velocity_z [1/T]";
-      file << ",max_distance [L]";
+        out << ",angular_velocity_x [1/T],angular_velocity_y "
+               "[1/T],angular_velocity_z [1/T]";
+      out << ",max_distance [L]";
       if (dim == 2)
-        file << ",rotation_z [1]";
+        out << ",rotation_z [1]";
       else
-        file << ",rotation_x [1],rotation_y [1],rotation_z [1]";
-      file << ",coordination_number [1]\n" << std::flush;
+        out << ",rotation_x [1],rotation_y [1],rotation_z [1]";
+      out << ",coordination_number [1]\n" << std::flush;
     });
   }
 
@@ -55,7 +55,7 @@ namespace grainmpm
   void
   GrainHistory<dim>::check_written() const
   {
-    check_history_file(file, filename, communicator);
+    file.check_written();
   }
 
 
@@ -64,10 +64,7 @@ namespace grainmpm
   std::uintmax_t
   GrainHistory<dim>::length()
   {
-    if (!file.is_open())
-      return 0;
-    file.flush();
-    return std::filesystem::file_size(filename);
+    return file.length();
   }
 
 
@@ -280,10 +277,7 @@ namespace grainmpm
           rows << ',' << rotations[g][d];
         rows << ',' << coordination_numbers[g] << '\n';
       }
-    file << std::flush;
-    const std::string text = rows.str();
-    file.write(text.data(), text.size());
-    file.flush();
+    file.append(rows.str());
   }
 
 

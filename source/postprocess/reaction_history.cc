@@ -34,7 +34,7 @@ namespace grainmpm
     : grid(grid)
     , grains(grains)
     , communicator(communicator)
-    , filename(filename)
+    , file(filename, communicator)
   {
     for (unsigned int face = 0; face < 2 * dim; ++face)
       if (grid.boundary_condition(face).type != BoundaryType::open)
@@ -48,22 +48,22 @@ namespace grainmpm
 
     const std::string force  = (dim == 2 ? "M L/T^2 per L" : "M L/T^2");
     const std::string torque = (dim == 2 ? "M L^2/T^2 per L" : "M L^2/T^2");
-    open_history(file, filename, resume_length, communicator, [&]() {
-      file << "step,time [T],dt [T]";
+    file.open(resume_length, [&](std::ofstream &out) {
+      out << "step,time [T],dt [T]";
       for (const unsigned int face : faces)
         for (unsigned int d = 0; d < dim; ++d)
-          file << ",wall_" << face_name(face) << "_force_"
-               << "xyz"[d] << " [" << force << "]";
+          out << ",wall_" << face_name(face) << "_force_"
+              << "xyz"[d] << " [" << force << "]";
       for (const unsigned int g : rigid_grains)
         {
           for (unsigned int d = 0; d < dim; ++d)
-            file << ",grain_" << g + 1 << "_force_"
-                 << "xyz"[d] << " [" << force << "]";
+            out << ",grain_" << g + 1 << "_force_"
+                << "xyz"[d] << " [" << force << "]";
           for (unsigned int d = 0; d < n_torque<dim>; ++d)
-            file << ",grain_" << g + 1 << "_torque_"
-                 << (dim == 2 ? 'z' : "xyz"[d]) << " [" << torque << "]";
+            out << ",grain_" << g + 1 << "_torque_"
+                << (dim == 2 ? 'z' : "xyz"[d]) << " [" << torque << "]";
         }
-      file << "\n" << std::flush;
+      out << "\n" << std::flush;
     });
   }
 
@@ -73,10 +73,7 @@ namespace grainmpm
   std::uintmax_t
   ReactionHistory<dim>::length()
   {
-    if (!file.is_open())
-      return 0;
-    file.flush();
-    return std::filesystem::file_size(filename);
+    return file.length();
   }
 
 
@@ -85,7 +82,7 @@ namespace grainmpm
   void
   ReactionHistory<dim>::check_written() const
   {
-    check_history_file(file, filename, communicator);
+    file.check_written();
   }
 
 
@@ -146,7 +143,7 @@ namespace grainmpm
         for (const double sum : sums)
           row << ',' << sum / dt + 0.;
         row << '\n';
-        file << row.str() << std::flush;
+        file.append(row.str());
       }
 
     // The centres move as the rigid grains' points do (midpoint rule).

@@ -37,6 +37,22 @@ namespace grainmpm
     double       friction_coefficient = 0.;
   };
 
+  /**
+   * The syntax of the `Initial stress` entries of materials and grains, for
+   * their documentation.
+   */
+  inline std::string
+  initial_stress_syntax()
+  {
+    return "Stress of the material points at the start, as expressions of "
+           "x, y (, z) separated by ';' (tension positive): in 2D "
+           "'s_xx; s_yy; s_xy' (then s_zz = nu (s_xx + s_yy) in plane strain "
+           "and 0 in plane stress) or 's_xx; s_yy; s_xy; s_zz', in 3D "
+           "'s_xx; s_yy; s_zz; s_xy; s_xz; s_yz'; e.g. the lithostatic state "
+           "of a layer of height 1 with rho g = 1 and K0 = 0.5: "
+           "'-0.5*(1 - y); -(1 - y); 0'. ";
+  }
+
   /** The name of box face @p face in the input: x-, x+, y-, y+, z-, z+. */
   inline const char *
   face_name(const unsigned int face)

@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/config.h>
 #include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/postprocess/history_file.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
@@ -18,6 +19,7 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -156,7 +158,8 @@ namespace grainmpm
 
     /**
      * Checkpoint the sums of the interval so far: they are gathered on
-     * rank 0 first (gather_sums()), which writes them.
+     * rank 0 first (gather_sums()), which writes them (#local_sums is then
+     * empty).
      */
     template <class Archive>
     void
@@ -174,14 +177,19 @@ namespace grainmpm
     gather_sums();
 
   private:
-    const double      friction_coefficient;
-    const MPI_Comm    communicator;
-    const std::string filename;
-    std::ofstream     file;
+    const double   friction_coefficient;
+    const MPI_Comm communicator;
+    HistoryFile    file;
     /** Sums per pair (grain_a, grain_b) of this rank since the interval start.
      */
+    /**
+     * Sums per pair (grain_a, grain_b) since the interval start: of every
+     * rank, gathered on rank 0 (gather_sums()), and what this rank added
+     * since, keyed by grain_a * 2^32 + grain_b.
+     */
     std::map<std::pair<unsigned int, unsigned int>, PairImpulseSums<dim>> sums;
-    double interval_start = 0.;
+    std::unordered_map<std::uint64_t, PairImpulseSums<dim>> local_sums;
+    double                                                  interval_start = 0.;
   };
 } // namespace grainmpm
 

@@ -7,6 +7,7 @@
 #include <grainmpm/base/config.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/postprocess/history_file.h>
 #include <grainmpm/time_integration/time_integrator.h>
 
 #include <deal.II/particles/particle_handler.h>
@@ -161,14 +162,13 @@ namespace grainmpm
 
   private:
     const Tensor<1, dim> gravity;
-    const std::string    filename;
     /** sum_p m_p x_p at the first compute(). */
     Tensor<1, dim>                     initial_moment;
     bool                               have_initial_moment = false;
     const std::vector<GrainInfo<dim>> &grains;
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
     const MPI_Comm                                              communicator;
-    std::ofstream                                               file;
+    HistoryFile                                                 file;
   };
 } // namespace grainmpm
 

@@ -5,6 +5,7 @@
 #define grainmpm_postprocess_grain_history_h
 
 #include <grainmpm/base/config.h>
+#include <grainmpm/postprocess/history_file.h>
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -112,8 +113,7 @@ namespace grainmpm
     const std::vector<bool> rigid;
     const unsigned int      n_grains;
     const MPI_Comm          communicator;
-    const std::string       filename;
-    std::ofstream           file;
+    HistoryFile             file;
 
     using Rotation = Tensor<1, dim == 2 ? 1 : 3>;
     /** Rotation of each grain since the start (see the class text). */

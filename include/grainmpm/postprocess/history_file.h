@@ -6,6 +6,8 @@
 
 #include <grainmpm/base/input_error.h>
 
+#include <deal.II/base/mpi.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -95,6 +97,85 @@ namespace grainmpm
     throw_on_all_ranks(error, communicator);
     check_history_file(file, filename, communicator);
   }
+
+
+
+  /**
+   * A CSV history of a run (energy.csv, grains.csv, walls.csv,
+   * contacts.csv): open on rank 0 only, cut back to its length at the
+   * checkpoint when a run resumes, its write errors raised on every rank.
+   */
+  class HistoryFile
+  {
+  public:
+    HistoryFile(const std::string &filename, const MPI_Comm communicator)
+      : filename(filename)
+      , communicator(communicator)
+    {}
+
+    /**
+     * Open the file (open_history()); @p write_header(stream) writes the
+     * header of a fresh file. Collective.
+     */
+    template <typename WriteHeader>
+    void
+    open(const std::uintmax_t resume_length, WriteHeader &&write_header)
+    {
+      open_history(file, filename, resume_length, communicator, [&]() {
+        write_header(file);
+        file << std::flush;
+      });
+    }
+
+    /** Whether this rank writes the file (rank 0). */
+    bool
+    is_open() const
+    {
+      return file.is_open();
+    }
+
+    /** The stream of rank 0, for rows written piece by piece. */
+    std::ofstream &
+    stream()
+    {
+      return file;
+    }
+
+    /** Append @p text in one write, flushed (rank 0; nothing elsewhere). */
+    void
+    append(const std::string &text)
+    {
+      if (!file.is_open())
+        return;
+      file.write(text.data(), text.size());
+      file.flush();
+    }
+
+    /** The length of the file so far (for a checkpoint; 0 off rank 0). */
+    std::uintmax_t
+    length()
+    {
+      if (!file.is_open())
+        return 0;
+      file.flush();
+      return std::filesystem::file_size(filename);
+    }
+
+    /**
+     * Stop every rank with a message naming the file if a write has failed.
+     * Collective.
+     */
+    void
+    check_written() const
+    {
+      check_history_file(file, filename, communicator);
+    }
+
+  private:
+    const std::string filename;
+    const MPI_Comm    communicator;
+    std::ofstream     file;
+  };
 } // namespace grainmpm
 
 #endif

@@ -8,6 +8,7 @@
 #include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/postprocess/history_file.h>
 
 #include <deal.II/base/point.h>
 
@@ -77,8 +78,7 @@ namespace grainmpm
     const BackgroundGrid<dim>         &grid;
     const std::vector<GrainInfo<dim>> &grains;
     const MPI_Comm                     communicator;
-    const std::string                  filename;
-    std::ofstream                      file;
+    HistoryFile                        file;
     /** The closed faces (open faces take no force). */
     std::vector<unsigned int> faces;
     /** The rigid grains and their centres of mass at the current time. */
