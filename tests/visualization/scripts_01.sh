@@ -8,8 +8,10 @@
 #  - the particle field fringe_order written by grainmpm equals
 #    thickness / fringe value times principal_stress_difference (read back
 #    through ParaView's own reader);
-#  - fringe_pattern.py, render_grains.py and plot_energy.py each answer
-#    --help and write a PNG of the requested size that is not blank;
+#  - fringe_pattern.py, render_grains.py, plot_energy.py, force_chains.py
+#    and plot_loads.py each answer --help and write a PNG of the requested
+#    size that is not blank;
+#  - force_chains.py stops with a clear message without contacts.pvd;
 #  - fringe_pattern.py stops with a clear message on a run without
 #    fringe_order values.
 # Usage: scripts_01.sh GRAINMPM SOURCE_DIR WORK_DIR
@@ -162,6 +164,32 @@ check energy_png /usr/bin/python3 -c "
 import matplotlib.image as image, sys
 p = image.imread('energy.png'); g = p[:, :, :3].mean(axis=2)
 sys.exit(0 if p.shape[1] >= 800 and g.min() < 0.2 and g.max() > 0.8 else 'blank')"
+
+# Force chains over the grains: coloured lines (saturated pixels, which the
+# grey grains and the white background are not) on at least 0.1 % of the
+# picture.
+check force_chains_help pv "$visualization/force_chains.py" --help
+check force_chains pv "$visualization/force_chains.py" \
+  results-explicit/particles.pvd --times 1 2 --output chains.png --panel-size 300 300
+check force_chains_png /usr/bin/python3 -c "
+import matplotlib.image as image, sys
+p = image.imread('chains.png')[:, :, :3]
+if p.shape[:2] != (300, 600): sys.exit('size %s' % (p.shape[:2],))
+saturation = p.max(axis=2) - p.min(axis=2)
+share = float((saturation > 0.2).mean())
+print('coloured share %.4f' % share)
+sys.exit(0 if share > 0.001 else 'no force chains drawn')"
+check force_chains_refuses_missing bash -c "! pvbatch '$visualization/force_chains.py' results-explicit/particles.pvd --contacts missing.pvd --output none.png > missing.log 2>&1 && grep -q 'Write contacts' missing.log && test ! -e none.png"
+
+# The loads on the walls: the five grains press on the floor.
+check plot_loads_help /usr/bin/python3 "$visualization/plot_loads.py" --help
+check plot_loads /usr/bin/python3 "$visualization/plot_loads.py" \
+  results-explicit/walls.csv results-implicit/walls.csv --load wall_y- \
+  --labels explicit implicit --output loads.png
+check loads_png /usr/bin/python3 -c "
+import matplotlib.image as image, sys
+p = image.imread('loads.png'); g = p[:, :, :3].mean(axis=2)
+sys.exit(0 if p.shape[1] >= 600 and g.min() < 0.2 and g.max() > 0.8 else 'blank')"
 
 # A run without a fringe value: a clear message, exit code not 0.
 sed 's/set Material fringe value = 0.023/set Material fringe value = 0/' \

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Copyright (C) 2026 by the grainmpm authors
+#
+# The progress lines and --quiet, on the shipped two-disk collision: a run
+# prints one progress line per output with the wall time and an estimate
+# of the time to the end; with --quiet (before or after the file name) it
+# prints no header and no progress line, but the final summary.
+# Usage: quiet_option_01.sh GRAINMPM SOURCE_DIR WORK_DIR
+set -uo pipefail
+grainmpm=$1
+source_dir=$2
+work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+cat > case.prm <<PRM
+include $source_dir/prm/two_disks_explicit.prm
+subsection Output
+  set Output directory = results
+  set Write particles  = false
+  set Write grid       = false
+end
+PRM
+failed=0
+"$grainmpm" case.prm > loud.log 2>&1 || { echo "FAIL: the run failed"; exit 1; }
+lines=$(grep -c '^step .* wall .* s  to end ~.* s$' loud.log)
+# Outputs every 0.1 to t = 3.5: 35 lines with the timing (t = 0 has none).
+if [ "$lines" -ne 35 ]; then
+  echo "FAIL: $lines progress lines with wall time and estimate, expected 35"
+  failed=1
+fi
+for where in before after; do
+  if [ $where = before ]; then
+    "$grainmpm" --quiet case.prm > quiet.log 2>&1 || failed=1
+  else
+    "$grainmpm" case.prm -q > quiet.log 2>&1 || failed=1
+  fi
+  if grep -q '^step\|^grainmpm' quiet.log; then
+    echo "FAIL: --quiet ($where the file) printed a header or progress line"
+    failed=1
+  fi
+  if ! grep -q '^finished: ' quiet.log; then
+    echo "FAIL: --quiet ($where the file) printed no summary"
+    failed=1
+  fi
+done
+[ $failed -eq 0 ] && echo "PASS: 35 progress lines; --quiet prints the summary only"
+exit $failed
