@@ -4,7 +4,7 @@
 // Checkpoint/restart (subsection Checkpoint), on one and on two MPI ranks
 // (the same output): a run writes a checkpoint
 // every N steps; a second run resumed from one of them in the same output
-// directory cuts energy.csv and grains.csv back to the checkpoint and
+// directory cuts the CSV histories back to the checkpoint and
 // continues. The files at the end must be byte-for-byte those of the
 // uninterrupted run:
 // (a) the implicit two-disk collision (prm/two_disks_implicit.prm),
@@ -70,8 +70,10 @@ check(const std::string &name,
     }
   MPI_Barrier(MPI_COMM_WORLD);
   grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
-  const std::string energy = contents(directory + "/energy.csv");
-  const std::string grains = contents(directory + "/grains.csv");
+  const std::string energy   = contents(directory + "/energy.csv");
+  const std::string grains   = contents(directory + "/grains.csv");
+  const std::string walls    = contents(directory + "/walls.csv");
+  const std::string contacts = contents(directory + "/contacts.csv");
 
   unsigned int n_checkpoints = 0;
   for (const auto &entry : std::filesystem::directory_iterator(directory))
@@ -111,6 +113,14 @@ check(const std::string &name,
   deallog << "  resumed grains.csv = uninterrupted, byte for byte: "
           << yes_no(contents(directory + "/grains.csv") == grains &&
                     grains.size() > 100)
+          << std::endl;
+  // The contact sums of the interval and the rigid centres are in the
+  // checkpoint.
+  deallog << "  resumed walls.csv and contacts.csv = uninterrupted, byte for "
+             "byte: "
+          << yes_no(contents(directory + "/walls.csv") == walls &&
+                    contents(directory + "/contacts.csv") == contacts &&
+                    walls.size() > 1000)
           << std::endl;
 }
 
