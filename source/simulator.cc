@@ -400,7 +400,8 @@ namespace grainmpm
         if (statistics.converged)
           {
             statistics.rejected = rejected;
-            time_step_controller->accept(statistics.newton_iterations);
+            time_step_controller->accept(time.get_next_step_size(),
+                                         statistics.newton_iterations);
             return statistics;
           }
 

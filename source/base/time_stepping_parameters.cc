@@ -46,15 +46,16 @@ namespace grainmpm
     prm.add_parameter(
       "Adaptive time stepping",
       adaptive_time_stepping,
-      "Implicit scheme: cut the time step when a Newton solve fails and "
-      "double it back (up to the step given by Time step or CFL number) "
-      "after Steps before growth consecutive easy steps. If false, a failed "
-      "solve stops the run.");
+      "Implicit scheme: halve the time step when a Newton solve fails, "
+      "and grow a cut step back by min(2, N_t / N) (up to the step given "
+      "by Time step or CFL number) after Steps before growth consecutive "
+      "steps that needed N <= N_t Newton iterations, N_t half of Maximum "
+      "Newton iterations. If false, a failed solve stops the run.");
     prm.add_parameter(
       "Steps before growth",
       steps_before_growth,
       "Implicit scheme: consecutive steps that converge in at most half of "
-      "Maximum Newton iterations before a cut time step is doubled. "
+      "Maximum Newton iterations before a cut time step grows. "
       "Dimensionless.",
       Patterns::Integer(1));
     prm.add_parameter(
@@ -238,7 +239,10 @@ namespace grainmpm
                       max_iterations,
                       "Newton iterations per step; a step that has not "
                       "converged then is rejected (see Time stepping/"
-                      "Adaptive time stepping). Dimensionless.",
+                      "Adaptive time stepping), unless its last iteration "
+                      "contracted ||R|| fast enough to reach the tolerance "
+                      "within a quarter more iterations: those it is given "
+                      "once. Dimensionless.",
                       Patterns::Integer(1, 1000));
     prm.add_parameter(
       "Forcing term",
@@ -297,6 +301,18 @@ namespace grainmpm
       "within a Newton iteration and re-evaluated between iterations; after "
       "this many changes in one step it is kept fixed. Dimensionless.",
       Patterns::Integer(0, 100));
+    prm.add_parameter(
+      "Contact status tolerance",
+      status_tolerance,
+      "Hysteresis of the contact status between Newton iterations, in "
+      "units of the velocity scale U: a slot held by contact or a wall is "
+      "released only when it separates faster than this, a free slot is "
+      "caught only when it approaches faster than this, and stick and "
+      "slip change likewise only beyond it. Slots whose approach speed "
+      "hovers about zero (grains resting on each other) then do not make "
+      "the status chatter; the constraint may keep a pull of that speed "
+      "times the slot mass. Zero: no hysteresis. Dimensionless.",
+      Patterns::Double(0., 1e-2));
     prm.leave_subsection();
   }
 

@@ -327,19 +327,29 @@ namespace grainmpm
                               const Tensor<1, dim> &normal,
                               const double          mu,
                               Tensor<1, dim>       &slip_direction,
-                              const double          allowed)
+                              const double          allowed,
+                              const ContactState    previous,
+                              const double          band)
   {
     // D of eq. (5): approaching iff relative . n > 0 (beyond the approach
     // the gap allows); then stick if mu D >= |v_t| (mu' = min(mu, C/D) =
     // C/D removes all relative tangential velocity), else slip by mu D.
+    // The hysteresis band shifts both tests against a change of state.
     slip_direction            = Tensor<1, dim>();
     const double normal_speed = relative * normal;
     const double approach     = normal_speed - allowed;
-    if (!(approach > 0.))
+    const double catch_shift =
+      band > 0. ? (previous == ContactState::free ? band : -band) : 0.;
+    if (!(approach > catch_shift))
       return ContactState::free;
-    const Tensor<1, dim> tangential = relative - normal_speed * normal;
-    const double         slip       = tangential.norm();
-    if (mu > 0. && mu * approach >= slip)
+    const Tensor<1, dim> tangential  = relative - normal_speed * normal;
+    const double         slip        = tangential.norm();
+    const double         stick_shift = band > 0. ?
+                                         (previous == ContactState::sticking ? band :
+                                          previous == ContactState::sliding ? -band :
+                                                                              0.) :
+                                         0.;
+    if (mu > 0. && mu * approach + stick_shift >= slip)
       return ContactState::sticking;
     if (mu > 0.)
       slip_direction = tangential / slip;
@@ -382,7 +392,9 @@ namespace grainmpm
                                   ContactState         *states,
                                   Tensor<1, dim>       *slip_directions,
                                   Tensor<1, dim>       *reference_out,
-                                  const double         *allowed)
+                                  const double         *allowed,
+                                  const ContactState   *previous_states,
+                                  const double          band)
   {
     if (states != nullptr)
       for (unsigned int k = 0; k < n_fields; ++k)
@@ -430,7 +442,10 @@ namespace grainmpm
                                normals[k],
                                mu,
                                slip_direction,
-                               allowed != nullptr ? allowed[k] : 0.);
+                               allowed != nullptr ? allowed[k] : 0.,
+                               previous_states != nullptr ? previous_states[k] :
+                                                            ContactState::free,
+                               previous_states != nullptr ? band : 0.);
               if (state == ContactState::free)
                 continue; // separating: free
             }
@@ -466,8 +481,10 @@ namespace grainmpm
         for (unsigned int k = 0; k < n_fields; ++k)
           velocity_scale =
             std::max(velocity_scale, (velocities[k] - reference).norm());
-        // Only the first pass's decisions are recorded.
-        states = nullptr;
+        // Only the first pass's decisions are recorded (and have the
+        // hysteresis).
+        states          = nullptr;
+        previous_states = nullptr;
         for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
           if (restore_momentum(
                 n_fields, masses, momentum_before, total_mass, velocities) <=
@@ -536,14 +553,17 @@ namespace grainmpm
 
   template <int dim>
   unsigned int
-  GrainContact<dim>::apply_contact(const GrainFieldLayout<dim> &layout,
-                                   const VectorType            &masses,
-                                   const VectorType            &normals,
-                                   VectorType                  &velocities,
-                                   std::vector<unsigned char>  *node_in_contact,
-                                   const double                 mass_threshold,
-                                   ContactStatus<dim>          *status,
-                                   ConstraintImpulses<dim>     *impulses) const
+  GrainContact<dim>::apply_contact(
+    const GrainFieldLayout<dim>     &layout,
+    const VectorType                &masses,
+    const VectorType                &normals,
+    VectorType                      &velocities,
+    std::vector<unsigned char>      *node_in_contact,
+    const double                     mass_threshold,
+    ContactStatus<dim>              *status,
+    ConstraintImpulses<dim>         *impulses,
+    const std::vector<ContactState> *previous_states,
+    const double                     band) const
   {
     NodeFields<dim>             fields(layout);
     std::vector<Tensor<1, dim>> before;
@@ -581,7 +601,11 @@ namespace grainmpm
                        status != nullptr ? node_states.data() : nullptr,
                        node_slips.data(),
                        &reference,
-                       node_allowed.data());
+                       node_allowed.data(),
+                       previous_states != nullptr ?
+                         previous_states->data() + fields.begin :
+                         nullptr,
+                       band);
         if (status != nullptr)
           for (unsigned int k = 0; k < n; ++k)
             {
@@ -619,7 +643,9 @@ namespace grainmpm
                                    const Tensor<1, dim>    &normal,
                                    const Tensor<1, dim>    &velocity,
                                    Tensor<1, dim>          &slip_direction,
-                                   const double             allowed)
+                                   const double             allowed,
+                                   const ContactState       previous,
+                                   const double             band)
   {
     slip_direction = Tensor<1, dim>();
     switch (condition.type)
@@ -636,7 +662,9 @@ namespace grainmpm
                           normal,
                           wall_friction(condition),
                           slip_direction,
-                          allowed);
+                          allowed,
+                          previous,
+                          band);
       }
     return ContactState::free;
   }
@@ -736,6 +764,7 @@ namespace grainmpm
                                        Tensor<1, dim>());
     status.wall_allowed.assign(status.wall_slots.size(), 0.);
     status.any_active = false;
+    status.decided    = false;
   }
 
 
@@ -747,15 +776,33 @@ namespace grainmpm
                             const VectorType            &normals,
                             const VectorType            &velocities,
                             const double                 mass_threshold,
-                            ContactStatus<dim>          &status) const
+                            ContactStatus<dim>          &status,
+                            const double                 band) const
   {
+    // The states decided before, for the hysteresis.
+    const bool                hysteresis = band > 0. && status.decided;
+    std::vector<ContactState> previous_slots, previous_walls;
+    if (hysteresis)
+      {
+        previous_slots = status.slot_state;
+        previous_walls = status.wall_state;
+      }
+
     // Contact: the decisions of the contact law at these velocities.
     std::fill(status.slot_state.begin(),
               status.slot_state.end(),
               ContactState::free);
     VectorType projected(velocities);
-    apply_contact(
-      layout, masses, normals, projected, nullptr, mass_threshold, &status);
+    apply_contact(layout,
+                  masses,
+                  normals,
+                  projected,
+                  nullptr,
+                  mass_threshold,
+                  &status,
+                  nullptr,
+                  hysteresis ? &previous_slots : nullptr,
+                  band);
 
     // Walls see the velocities after contact, face after face.
     for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
@@ -769,11 +816,14 @@ namespace grainmpm
           condition.type == BoundaryType::no_slip ?
             0. :
             wall_allowed_approach(s, status.wall_faces[w]);
-        status.wall_state[w] = classify_wall(condition,
-                                             normal,
-                                             velocity,
-                                             status.wall_slip_directions[w],
-                                             status.wall_allowed[w]);
+        status.wall_state[w] =
+          classify_wall(condition,
+                        normal,
+                        velocity,
+                        status.wall_slip_directions[w],
+                        status.wall_allowed[w],
+                        hysteresis ? previous_walls[w] : ContactState::free,
+                        hysteresis ? band : 0.);
         apply_state(status.wall_state[w],
                     normal,
                     wall_friction(condition),
@@ -786,6 +836,7 @@ namespace grainmpm
     const auto active = [](const ContactState state) {
       return state != ContactState::free;
     };
+    status.decided = true;
     status.any_active =
       std::any_of(status.slot_state.begin(), status.slot_state.end(), active) ||
       std::any_of(status.wall_state.begin(), status.wall_state.end(), active);

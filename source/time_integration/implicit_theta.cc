@@ -37,7 +37,10 @@ namespace grainmpm
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
              velocity_scale(parameters, grains, materials))
-  {}
+  {
+    residual.set_status_band(parameters.nonlinear_solver.status_tolerance *
+                             velocity_scale(parameters, grains, materials));
+  }
 
 
 

@@ -122,8 +122,13 @@ namespace grainmpm
     }
 
     const ContactStatus<dim> old_status = status;
-    contact.freeze(
-      *layout, *masses, *normals, trial_velocities, mass_threshold, status);
+    contact.freeze(*layout,
+                   *masses,
+                   *normals,
+                   trial_velocities,
+                   mass_threshold,
+                   status,
+                   status_band);
     // The change on any rank (the solver's decisions must agree).
     unsigned int change = 0;
     if (old_status.slot_state != status.slot_state ||

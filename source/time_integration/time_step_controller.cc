@@ -95,14 +95,26 @@ namespace grainmpm
 
 
   void
-  TimeStepController::accept(const unsigned int newton_iterations)
+  TimeStepController::accept(const double       step,
+                             const unsigned int newton_iterations)
   {
-    if (step_limit > 0. && 2 * newton_iterations <= max_newton_iterations)
-      if (++easy_steps >= parameters.steps_before_growth)
-        {
-          step_limit *= 2.;
-          easy_steps = 0;
-        }
+    // A cut step grows back by min(2, N_t / N), N_t half the Newton
+    // iterations allowed, after Steps before growth easy steps (N <= N_t).
+    // (Shrinking the next step after a hard one, N > N_t, was tried: where
+    // N does not fall with dt, e.g. at most 3 iterations allowed and 2 or 3
+    // needed, it shrank the step without end.)
+    const double target = 0.5 * max_newton_iterations;
+    const double n      = std::max(1U, newton_iterations);
+    if (step_limit > 0. && n <= target)
+      {
+        if (++easy_steps >= parameters.steps_before_growth)
+          {
+            step_limit = std::max(step_limit, step) * std::min(2., target / n);
+            easy_steps = 0;
+          }
+      }
+    else
+      easy_steps = 0;
   }
 
 

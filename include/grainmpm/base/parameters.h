@@ -257,7 +257,7 @@ namespace grainmpm
     /** Cut dt on a failed implicit step and grow it back afterwards. */
     bool adaptive_time_stepping = true;
     /** Consecutive easy steps before dt is doubled back. */
-    unsigned int   steps_before_growth  = 5;
+    unsigned int   steps_before_growth  = 2;
     std::string    stress_update_text   = "USF";
     StressUpdate   stress_update        = StressUpdate::usf;
     double         end_time             = 1.;
@@ -337,6 +337,8 @@ namespace grainmpm
     bool             line_search          = true;
     unsigned int     max_line_search_cuts = 10;
     unsigned int     max_status_changes   = 5;
+    /** Hysteresis band of the contact status, in units of U. */
+    double status_tolerance = 0.;
 
     void
     declare(ParameterHandler &prm);

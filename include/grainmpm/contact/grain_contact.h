@@ -59,6 +59,8 @@ namespace grainmpm
 
     /** Whether any slot or wall entry is not free. */
     bool any_active = false;
+    /** Whether the states were decided (by freeze) since reinit_status. */
+    bool decided = false;
   };
 
 
@@ -222,14 +224,16 @@ namespace grainmpm
      * velocities; if @p impulses is given, the impulses of the corrections.
      */
     unsigned int
-    apply_contact(const GrainFieldLayout<dim> &layout,
-                  const VectorType            &masses,
-                  const VectorType            &normals,
-                  VectorType                  &velocities,
-                  std::vector<unsigned char>  *node_in_contact,
-                  const double                 mass_threshold = 0.,
-                  ContactStatus<dim>          *status         = nullptr,
-                  ConstraintImpulses<dim>     *impulses       = nullptr) const;
+    apply_contact(const GrainFieldLayout<dim>     &layout,
+                  const VectorType                &masses,
+                  const VectorType                &normals,
+                  VectorType                      &velocities,
+                  std::vector<unsigned char>      *node_in_contact,
+                  const double                     mass_threshold  = 0.,
+                  ContactStatus<dim>              *status          = nullptr,
+                  ConstraintImpulses<dim>         *impulses        = nullptr,
+                  const std::vector<ContactState> *previous_states = nullptr,
+                  const double                     band            = 0.) const;
 
     /**
      * Apply the wall conditions of the box faces to the deformable fields
@@ -254,7 +258,10 @@ namespace grainmpm
      * Decide and freeze the contact and wall states for the velocities
      * @p velocities: the contact law as apply_contact() applies it (slots
      * with a mass not above @p mass_threshold free), then the walls on the
-     * velocities after contact.
+     * velocities after contact. With @p band > 0 and a status frozen
+     * before in this step, the decisions have the hysteresis of
+     * classify() against the states in @p status: a state changes only
+     * when the velocities cross its threshold by more than @p band.
      */
     void
     freeze(const GrainFieldLayout<dim> &layout,
@@ -262,7 +269,8 @@ namespace grainmpm
            const VectorType            &normals,
            const VectorType            &velocities,
            const double                 mass_threshold,
-           ContactStatus<dim>          &status) const;
+           ContactStatus<dim>          &status,
+           const double                 band = 0.) const;
 
     /**
      * Apply the frozen @p status to @p velocities in place: contact at the
@@ -303,7 +311,8 @@ namespace grainmpm
      * Returns true if some field was corrected. If @p states is given, it
      * receives the state of each field decided in the first pass (and
      * @p slip_directions the slip directions, @p reference the partner
-     * velocity).
+     * velocity). With @p previous_states and @p band > 0 the decisions
+     * of the first pass have the hysteresis of classify().
      */
     static bool
     project_node(const unsigned int    n_fields,
@@ -317,7 +326,9 @@ namespace grainmpm
                  ContactState         *states          = nullptr,
                  Tensor<1, dim>       *slip_directions = nullptr,
                  Tensor<1, dim>       *reference       = nullptr,
-                 const double         *allowed         = nullptr);
+                 const double         *allowed         = nullptr,
+                 const ContactState   *previous_states = nullptr,
+                 const double          band            = 0.);
 
     /**
      * The contact law at one node with the states @p states and slip
@@ -345,13 +356,20 @@ namespace grainmpm
      * coefficient @p mu: with D the approach speed beyond @p allowed,
      * free if D <= 0, sticking if mu D >= |v_t|, else sliding; sets the
      * slip direction of a sliding state with friction, zero otherwise.
+     * With a hysteresis band @p band > 0 the tests are shifted against a
+     * change of the state @p previous: a constrained slot is released
+     * only when D < -band and a free one is caught only when D > band; a
+     * sticking slot slips only when |v_t| > mu D + band and a sliding one
+     * sticks only when |v_t| < mu D - band.
      */
     static ContactState
     classify(const Tensor<1, dim> &relative,
              const Tensor<1, dim> &normal,
              const double          mu,
              Tensor<1, dim>       &slip_direction,
-             const double          allowed = 0.);
+             const double          allowed  = 0.,
+             const ContactState    previous = ContactState::free,
+             const double          band     = 0.);
 
     /**
      * Apply @p state to @p velocity with partner velocity @p reference,
@@ -375,7 +393,9 @@ namespace grainmpm
                   const Tensor<1, dim>    &normal,
                   const Tensor<1, dim>    &velocity,
                   Tensor<1, dim>          &slip_direction,
-                  const double             allowed = 0.);
+                  const double             allowed  = 0.,
+                  const ContactState       previous = ContactState::free,
+                  const double             band     = 0.);
 
     /**
      * The unilateral wall condition with outward wall normal @p normal

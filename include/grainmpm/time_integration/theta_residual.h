@@ -126,6 +126,16 @@ namespace grainmpm
     Change
     freeze_status(const VectorType &velocities);
 
+    /**
+     * The hysteresis band of the status decisions after the first in a
+     * step (a velocity; GrainContact::freeze()).
+     */
+    void
+    set_status_band(const double band)
+    {
+      status_band = band;
+    }
+
     /** evaluate(@p x, @p r). */
     void
     residual(const VectorType &x, VectorType &r) override
@@ -262,6 +272,8 @@ namespace grainmpm
 
     /** The frozen contact and wall status. */
     ContactStatus<dim> status;
+    /** The hysteresis band of the status decisions. */
+    double status_band = 0.;
 
     /** Work vectors of evaluate(). */
     mutable VectorType work_projected;

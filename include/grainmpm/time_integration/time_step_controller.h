@@ -14,9 +14,10 @@ namespace grainmpm
    * The size of the time steps: from the CFL condition
    * dt = CFL h_min / (c_max + |v|_max) or the fixed `Time step`, and the
    * failure policy of the implicit scheme: a rejected step is retried with
-   * half the step (down to `Minimum time step`), and a cut step grows back
-   * by a factor 2 after `Steps before growth` easy steps (at most half the
-   * Newton iterations allowed). Its state is written to checkpoints by
+   * half the step (down to `Minimum time step`), and a cut step grows
+   * back by min(2, N_t / N) after `Steps before growth` consecutive easy
+   * steps, N the Newton iterations of the step and N_t half of those
+   * allowed (easy: N <= N_t). Its state is written to checkpoints by
    * serialize(). A case whose End time needs more than
    * maximum_steps_to_end steps is refused when the controller is made.
    */
@@ -60,11 +61,11 @@ namespace grainmpm
     }
 
     /**
-     * An implicit step was accepted after @p newton_iterations: count it
-     * towards growing a cut step back.
+     * An implicit step of size @p step was accepted after
+     * @p newton_iterations: count it towards growing a cut step back.
      */
     void
-    accept(const unsigned int newton_iterations);
+    accept(const double step, const unsigned int newton_iterations);
 
     /**
      * The step after an accepted one in which particles moved at most at
