@@ -24,8 +24,8 @@ E, nu, rho = 1000., 0.3, 1.
 c = (E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho)) ** 0.5
 print(0.25 / 64 / c)")
 
-# platen_force NAME: the dt-weighted mean of -F_y on the platen (grain 1)
-# over t in (0.9, 1].
+# platen_force NAME: the dt-weighted mean of the force F_y that the disks
+# put on the platen (grain 1; upwards, positive) over t in (0.9, 1].
 platen_force() {
   python3 - "$work/$1/walls.csv" <<'PYTHON'
 import csv, sys
@@ -35,7 +35,7 @@ impulse = duration = 0.
 for r in rows[1:]:
     t, dt = float(r[1]), float(r[2])
     if t > 0.9 + 1e-12:
-        impulse += -float(r[column]) * dt
+        impulse += float(r[column]) * dt
         duration += dt
 print(f"{impulse / duration:.5g}")
 PYTHON
