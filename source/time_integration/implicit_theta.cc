@@ -39,7 +39,7 @@ namespace grainmpm
              velocity_scale(parameters, grains, materials))
   {
     residual.set_status_band(parameters.nonlinear_solver.status_tolerance *
-                             velocity_scale(parameters, grains, materials));
+                             solver.get_velocity_scale());
   }
 
 

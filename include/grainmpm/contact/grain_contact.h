@@ -222,6 +222,8 @@ namespace grainmpm
      * @p status is given, records the states decided (a field corrected in
      * any pass keeps the state of its last correction) and the partner
      * velocities; if @p impulses is given, the impulses of the corrections.
+     * With @p previous_states (per slot) and @p band > 0 the decisions have
+     * the hysteresis of classify() against those states (freeze()).
      */
     unsigned int
     apply_contact(const GrainFieldLayout<dim>     &layout,

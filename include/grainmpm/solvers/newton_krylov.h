@@ -106,6 +106,13 @@ namespace grainmpm
     NewtonStatistics
     solve(NonlinearProblem &problem, VectorType &x) const;
 
+    /** The velocity scale U of the tolerances and differencing steps. */
+    double
+    get_velocity_scale() const
+    {
+      return velocity_scale;
+    }
+
     /** The differencing step for perturbing @p x along @p z. */
     double
     differencing_step(const VectorType &x, const VectorType &z) const;
