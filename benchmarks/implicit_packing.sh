@@ -17,6 +17,13 @@
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
+# Environment: PRECONDITIONER (probed Jacobi or AMG), FACTORS (the implicit
+# steps in units of the explicit one), FRICTIONS.
+preconditioner=${PRECONDITIONER:-probed Jacobi}
+factors=${FACTORS:-10 30 100 300}
+frictions=${FRICTIONS:-0 0.3}
+echo "implicit runs: Linear solver/Preconditioner = $preconditioner"
+
 # The explicit CFL 0.25 step of this case (h = 1/64, wave speed of E = 1000,
 # nu = 0.3, rho = 1, plane strain).
 explicit_step=$(python3 -c "
@@ -43,7 +50,7 @@ PYTHON
 
 echo "| friction | scheme | dt / explicit | wall time [s] | steps | rejected | Newton/step | GMRES/Newton | status changes/step | platen force (0.9-1) | / explicit |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
-for friction in 0 0.3; do
+for friction in $frictions; do
   if [ "$friction" = 0 ]; then
     contact="subsection Contact\n  set Contact model = frictionless\nend"
   else
@@ -55,12 +62,12 @@ for friction in 0 0.3; do
   reference=$(platen_force "explicit_$friction")
   steps=$(grep -o 'finished: [0-9]*' "$work/explicit_$friction.out" | sed 's/finished: //')
   echo "| $friction | explicit USL | 1 | $seconds | $steps | - | - | - | - | $reference | 1 |"
-  for factor in 10 30 100 300; do
+  for factor in $factors; do
     name="implicit_${friction}_$factor"
     step=$(python3 -c "print($factor * $explicit_step)")
     start=$(date +%s.%N)
     if run "$name" slow_compression_implicit \
-      "$contact\nsubsection Time stepping\n  set Time step = $step\nend" 2> "$work/$name.err"; then
+      "$contact\nsubsection Time stepping\n  set Time step = $step\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\nend" 2> "$work/$name.err"; then
       seconds=$(python3 -c "print(f'{$(date +%s.%N) - $start:.0f}')")
       steps=$(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //')
       force=$(platen_force "$name")

@@ -88,9 +88,12 @@ def main(argv):
     import matplotlib.pyplot as plt
 
     runs = [read_columns(f) for f in arguments.files]
-    ledger = ["plastic_work", "friction_work", "boundary_work",
+    ledger = ["plastic_work", "friction_work", "boundary_work", "impact_loss",
               "transfer_work", "balance_residual"]
-    with_ledger = all(all(name in run for name in ledger) for run in runs)
+    # (impact_loss: explicit runs since it was added; optional)
+    with_ledger = all(
+        all(name in run for name in ledger if name != "impact_loss") for run in runs
+    )
     n_rows = 3 if with_ledger else 2
 
     figure, axes = plt.subplots(
@@ -144,11 +147,12 @@ def main(argv):
                 "plastic_work": "m-",
                 "friction_work": "c-",
                 "boundary_work": "y-",
+                "impact_loss": "r--",
                 "transfer_work": "b--",
                 "balance_residual": "k-",
             }
             for name in ledger:
-                if any(run[name]):
+                if name in run and any(run[name]):
                     bottom.plot(
                         time, scaled(name), styles[name],
                         label=name.replace("_", " "),

@@ -13,16 +13,17 @@ namespace grainmpm
   {
     if (Utilities::MPI::n_mpi_processes(communicator) == 1)
       return;
-    double sums[7] = {static_cast<double>(n_contact_nodes),
+    double sums[8] = {static_cast<double>(n_contact_nodes),
                       static_cast<double>(n_removed),
                       static_cast<double>(n_held_at_walls),
                       transfer_energy_change,
                       plastic_work,
                       friction_work,
-                      boundary_work};
-    Utilities::MPI::sum(ArrayView<const double>(sums, 7),
+                      boundary_work,
+                      impact_loss};
+    Utilities::MPI::sum(ArrayView<const double>(sums, 8),
                         communicator,
-                        ArrayView<double>(sums, 7));
+                        ArrayView<double>(sums, 8));
     n_contact_nodes        = static_cast<unsigned int>(sums[0]);
     n_removed              = static_cast<types::particle_index>(sums[1]);
     n_held_at_walls        = static_cast<types::particle_index>(sums[2]);
@@ -30,6 +31,7 @@ namespace grainmpm
     plastic_work           = sums[4];
     friction_work          = sums[5];
     boundary_work          = sums[6];
+    impact_loss            = sums[7];
     max_speed              = Utilities::MPI::max(max_speed, communicator);
     sorted = Utilities::MPI::max(sorted ? 1U : 0U, communicator) > 0;
   }

@@ -378,9 +378,12 @@ namespace grainmpm
       preconditioner_text,
       "'none', or 'probed Jacobi': weighted Jacobi with the diagonal of the "
       "simplified Jacobian (eqs. 18-20 of Cummins & Brackbill) probed "
-      "matrix-free with 2 3^dim coloured residual evaluations once per step. "
-      "Dimensionless.",
-      Patterns::Selection("none|probed Jacobi"));
+      "matrix-free with 2 3^dim coloured residual evaluations once per step; "
+      "or 'AMG': the mass plus theta^2 dt^2 times the elastic stiffness of "
+      "each grain with the frozen contact and wall constraints, assembled "
+      "and inverted by one algebraic multigrid V-cycle (Trilinos ML), set "
+      "up again after each change of the contact status. Dimensionless.",
+      Patterns::Selection("none|probed Jacobi|AMG"));
     prm.add_parameter("Jacobi weight",
                       jacobi_weight,
                       "omega of y = omega D^-1 r (irrelevant to GMRES with one "
@@ -408,7 +411,8 @@ namespace grainmpm
       "Linear solver/Preconditioner = " + preconditioner_text,
       preconditioner_text,
       {{"none", Preconditioner::none},
-       {"probed Jacobi", Preconditioner::probed_jacobi}});
+       {"probed Jacobi", Preconditioner::probed_jacobi},
+       {"AMG", Preconditioner::amg}});
     flexible      = (solver == KrylovSolver::fgmres);
     probed_jacobi = (preconditioner == Preconditioner::probed_jacobi);
     if (jacobi_sweeps > 1 && !flexible && probed_jacobi)

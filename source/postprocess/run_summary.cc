@@ -116,8 +116,10 @@ namespace grainmpm
         << "  energy ledger / " << scale
         << ": plastic work = " << ledger.plastic_work / reference
         << ", friction work = " << ledger.friction_work / reference
-        << ", boundary work = " << ledger.boundary_work / reference
-        << ", transfers = " << ledger.transfer / reference
+        << ", boundary work = " << ledger.boundary_work / reference;
+    if (!implicit)
+      out << ", impact loss = " << ledger.impact_loss / reference;
+    out << ", transfers = " << ledger.transfer / reference
         << ", balance residual = "
         << ledger.balance(current_energy, initial_energy) / reference
         << " (largest " << largest_balance / reference << ")\n"

@@ -51,6 +51,29 @@ namespace grainmpm
 
 
     /**
+     * The problem's assembled preconditioner
+     * (NonlinearProblem::apply_preconditioner()).
+     */
+    class AssembledPreconditioner
+    {
+    public:
+      explicit AssembledPreconditioner(NonlinearProblem &problem)
+        : problem(problem)
+      {}
+
+      void
+      vmult(VectorType &dst, const VectorType &src) const
+      {
+        problem.apply_preconditioner(dst, src);
+      }
+
+    private:
+      NonlinearProblem &problem;
+    };
+
+
+
+    /**
      * Weighted Jacobi: z = omega D^-1 r, then sweeps - 1 times
      * z += omega D^-1 (r - J z).
      */
@@ -211,6 +234,11 @@ namespace grainmpm
         },
         diagonal);
 
+    // The assembled preconditioner depends on the contact status: set up
+    // before the first linear solve and again after each change of it.
+    const bool assembled = (linear.preconditioner == Preconditioner::amg);
+    bool       preconditioner_stale = assembled;
+
     double       previous_norm = norm;
     bool         restarted     = false;
     unsigned int limit         = nonlinear.max_iterations;
@@ -269,6 +297,12 @@ namespace grainmpm
         restarted                     = false;
         const double linear_tolerance = std::max(eta * norm, 0.5 * target);
 
+        if (preconditioner_stale)
+          {
+            problem.setup_preconditioner(x);
+            preconditioner_stale = false;
+          }
+
         // J dx = -R, matrix-free, from dx = 0.
         const FiniteDifferenceJacobian jacobian(problem, *this, x, r);
         SolverControl                  control(linear.max_iterations,
@@ -294,6 +328,11 @@ namespace grainmpm
                                                     diagonal,
                                                     linear.jacobi_weight,
                                                     linear.jacobi_sweeps));
+                else if (assembled)
+                  fgmres.solve(jacobian,
+                               dx,
+                               rhs,
+                               AssembledPreconditioner(problem));
                 else
                   fgmres.solve(jacobian, dx, rhs, PreconditionIdentity());
               }
@@ -309,6 +348,11 @@ namespace grainmpm
                               rhs,
                               JacobiPreconditioner(
                                 jacobian, diagonal, linear.jacobi_weight, 1));
+                else if (assembled)
+                  gmres.solve(jacobian,
+                              dx,
+                              rhs,
+                              AssembledPreconditioner(problem));
                 else
                   gmres.solve(jacobian, dx, rhs, PreconditionIdentity());
               }
@@ -368,7 +412,8 @@ namespace grainmpm
             if (change == NonlinearProblem::Change::discrete)
               {
                 ++statistics.status_changes;
-                restarted = true;
+                restarted            = true;
+                preconditioner_stale = assembled;
               }
             if (change != NonlinearProblem::Change::none)
               {

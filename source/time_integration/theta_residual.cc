@@ -5,6 +5,9 @@
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/theta_residual.h>
 
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -138,6 +141,69 @@ namespace grainmpm
              old_status.wall_slip_directions != status.wall_slip_directions)
       change = static_cast<unsigned int>(Change::continuous);
     return static_cast<Change>(Utilities::MPI::max(change, communicator()));
+  }
+
+
+
+  template <int dim>
+  void
+  ThetaResidual<dim>::setup_preconditioner(const VectorType &)
+  {
+    // P_s column by column: the linear part of the frozen projection is
+    // slot-wise (reference velocities fixed), so one probe per direction
+    // with a unit vector in every unknown slot gives all P_s at once; a
+    // probe of ones marks the unknowns among the ghost slots.
+    const unsigned int          n_owned = layout->n_slots();
+    const unsigned int          n_local = layout->n_local_slots();
+    std::vector<Tensor<2, dim>> projections(n_local);
+    std::vector<bool>           unknown(n_local, false);
+    VectorType                  probe;
+    probe.reinit(*old_velocities, true);
+    for (unsigned int d = 0; d <= dim; ++d)
+      {
+        probe = 0.;
+        for (unsigned int s = 0; s < n_owned; ++s)
+          if (slot_active[s] && !slot_rigid[s])
+            probe.local_element(s * dim + (d < dim ? d : 0)) = 1.;
+        if (d < dim)
+          apply_projection(probe, GrainContact<dim>::Reference::zero, nullptr);
+        probe.update_ghost_values();
+        for (unsigned int s = 0; s < n_local; ++s)
+          if (d < dim)
+            for (unsigned int i = 0; i < dim; ++i)
+              projections[s][i][d] = probe.local_element(s * dim + i);
+          else
+            unknown[s] = probe.local_element(s * dim) != 0.;
+        probe.zero_out_ghost_values();
+      }
+
+    // The lumped masses that divide the residual; for the rows that are
+    // not unknowns (rigid, light slots: J = I) the mean of those, to keep
+    // A balanced.
+    std::vector<double> lumped_masses(n_owned, 0.);
+    double              sums[2] = {0., 0.};
+    for (unsigned int s = 0; s < n_owned; ++s)
+      if (unknown[s])
+        {
+          sums[0] += masses->local_element(s);
+          sums[1] += 1.;
+        }
+    Utilities::MPI::sum(ArrayView<const double>(sums, 2),
+                        communicator(),
+                        ArrayView<double>(sums, 2));
+    const double mean = sums[1] > 0. ? sums[0] / sums[1] : 1.;
+    for (unsigned int s = 0; s < n_owned; ++s)
+      lumped_masses[s] = unknown[s] ? masses->local_element(s) : mean;
+
+    preconditioner.initialize(transfer->get_cache(),
+                              particle_models,
+                              particle_volumes,
+                              *mass_matrix,
+                              lumped_masses,
+                              unknown,
+                              projections,
+                              theta * theta * dt * dt,
+                              *old_velocities);
   }
 
 

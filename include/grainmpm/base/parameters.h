@@ -361,7 +361,8 @@ namespace grainmpm
   enum class Preconditioner
   {
     none,
-    probed_jacobi
+    probed_jacobi,
+    amg
   };
 
   /**

@@ -83,14 +83,24 @@ namespace grainmpm
      */
     double friction_work = 0.;
     double boundary_work = 0.;
+    /**
+     * Explicit scheme: what the contact, wall and rigid-grain constraints
+     * on v^{n+1} take out beyond the friction work, booked as the work of
+     * their reactions on the step's mean velocity (v^n + v^{n+1}) / 2
+     * minus that on v^{n+1} (GrainContact::impact_loss()): each node where
+     * two fields approaching at t^n meet makes a perfectly inelastic
+     * impact of their nodal masses. Zero in the implicit scheme, whose
+     * constraints act on v^theta, the velocity they do work on.
+     */
+    double impact_loss = 0.;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
 
     /**
      * Add up (largest speed: maximum; sorted: or) what each rank counted
      * of its particles and slots: contact nodes, removed and held points,
-     * the transfer energy change and the plastic, friction and boundary
-     * work. Collective.
+     * the transfer energy change, the plastic, friction and boundary work
+     * and the impact loss. Collective.
      */
     void
     reduce(const MPI_Comm communicator);

@@ -11,6 +11,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <memory>
+#include <utility>
 
 namespace grainmpm
 {
@@ -47,6 +48,15 @@ namespace grainmpm
     /** The largest wave speed, for the CFL condition. Units: length/time. */
     virtual double
     wave_speed() const = 0;
+
+    /**
+     * Lame's first parameter and the shear modulus of the elastic
+     * increment (in 2D plane stress the reduced first parameter): the
+     * tangent that the assembled preconditioner of the implicit scheme
+     * uses. Units: stress.
+     */
+    virtual std::pair<double, double>
+    lame_parameters() const = 0;
 
     /** Mass density. */
     virtual double

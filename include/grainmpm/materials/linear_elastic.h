@@ -36,6 +36,12 @@ namespace grainmpm
     double
     wave_speed() const override;
 
+    std::pair<double, double>
+    lame_parameters() const override
+    {
+      return {lambda, mu};
+    }
+
     double
     density() const override;
 

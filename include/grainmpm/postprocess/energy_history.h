@@ -71,6 +71,11 @@ namespace grainmpm
     /** Work put in by rigid grains (and walls, which are at rest). */
     double boundary_work = 0.;
     /**
+     * What the explicit constraints took out in impacts of nodal masses
+     * (StepStatistics::impact_loss); 0 implicit.
+     */
+    double impact_loss = 0.;
+    /**
      * Energy the grid-to-particle transfers added (FLIP: <= 0, the
      * lumped-mass loss).
      */
@@ -80,7 +85,8 @@ namespace grainmpm
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &plastic_work &friction_work &boundary_work &transfer;
+      archive &plastic_work &friction_work &boundary_work &impact_loss
+        &transfer;
     }
 
     /** Add the step's entries. */
@@ -90,20 +96,21 @@ namespace grainmpm
       plastic_work += statistics.plastic_work;
       friction_work += statistics.friction_work;
       boundary_work += statistics.boundary_work;
+      impact_loss += statistics.impact_loss;
       transfer += statistics.transfer_energy_change;
     }
 
     /**
-     * E(now) - E(0) + plastic + friction - boundary - transfer: zero for
-     * an exact balance.
+     * E(now) - E(0) + plastic + friction + impact loss - boundary
+     * - transfer: zero for an exact balance.
      */
     template <int dim>
     double
     balance(const EnergySummary<dim> &now,
             const EnergySummary<dim> &initial) const
     {
-      return now.total() - initial.total() + plastic_work + friction_work -
-             boundary_work - transfer;
+      return now.total() - initial.total() + plastic_work + friction_work +
+             impact_loss - boundary_work - transfer;
     }
   };
 

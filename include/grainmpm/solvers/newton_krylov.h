@@ -47,6 +47,30 @@ namespace grainmpm
     virtual Change
     update_linearization(const VectorType &x) = 0;
 
+    /**
+     * Set up an assembled preconditioner of the Jacobian at @p x (with
+     * the frozen linearisation state). Problems without one do not
+     * override it.
+     */
+    virtual void
+    setup_preconditioner(const VectorType & /*x*/)
+    {
+      AssertThrow(false,
+                  ExcMessage("This problem has no assembled preconditioner: "
+                             "set Linear solver/Preconditioner to probed "
+                             "Jacobi or none."));
+    }
+
+    /**
+     * @p dst = approximately J^-1 @p src with the preconditioner of
+     * setup_preconditioner().
+     */
+    virtual void
+    apply_preconditioner(VectorType & /*dst*/, const VectorType & /*src*/)
+    {
+      AssertThrow(false, ExcInternalError());
+    }
+
     /** Diagonal of the preconditioner's Jacobian at @p x. */
     virtual void
     jacobian_diagonal(const VectorType   &x,

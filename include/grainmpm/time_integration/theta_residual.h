@@ -8,6 +8,7 @@
 #include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
+#include <grainmpm/solvers/elastic_preconditioner.h>
 #include <grainmpm/solvers/newton_krylov.h>
 #include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
@@ -151,6 +152,30 @@ namespace grainmpm
     }
 
     /**
+     * Assemble the elastic preconditioner (ElasticPreconditioner) with the
+     * slot-wise projections of the status frozen at present (the linear
+     * part of the simplified projection, probed with one unit vector per
+     * direction). @p x is not used: the elastic stiffness is that of the
+     * particles at t^n.
+     */
+    void
+    setup_preconditioner(const VectorType &x) override;
+
+    /** ElasticPreconditioner::vmult(). */
+    void
+    apply_preconditioner(VectorType &dst, const VectorType &src) override
+    {
+      preconditioner.vmult(dst, src);
+    }
+
+    /** The assembled preconditioner (for tests). */
+    const ElasticPreconditioner<dim> &
+    get_preconditioner() const
+    {
+      return preconditioner;
+    }
+
+    /**
      * The simplified residual at @p x and probe_diagonal() from it.
      */
     void
@@ -274,6 +299,9 @@ namespace grainmpm
     ContactStatus<dim> status;
     /** The hysteresis band of the status decisions. */
     double status_band = 0.;
+
+    /** The assembled preconditioner, set up by setup_preconditioner(). */
+    ElasticPreconditioner<dim> preconditioner;
 
     /** Work vectors of evaluate(). */
     mutable VectorType work_projected;

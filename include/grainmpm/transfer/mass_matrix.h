@@ -119,6 +119,31 @@ namespace grainmpm
     double
     local_kinetic_energy(const VectorType &velocities) const;
 
+    /** The particle masses in cache order. */
+    const std::vector<double> &
+    get_particle_masses() const
+    {
+      return particle_masses;
+    }
+
+    /**
+     * The shape values of the consistent part per cache entry: S_ip, zero
+     * at lumped slots. An off-diagonal entry of M is
+     * alpha sum_p m_p S_ip S_jp over these.
+     */
+    const std::vector<double> &
+    get_consistent_shapes() const
+    {
+      return consistent_shapes;
+    }
+
+    /** The diagonal of M (dim equal entries per owned slot). */
+    const VectorType &
+    get_diagonal() const
+    {
+      return diagonal;
+    }
+
   private:
     /** M_C @p src into @p dst (no compress, ghosts of @p src read). */
     void
