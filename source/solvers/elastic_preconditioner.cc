@@ -5,8 +5,9 @@
 
 #include <deal.II/base/index_set.h>
 
-#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <algorithm>
 
 namespace grainmpm
 {
@@ -21,17 +22,18 @@ namespace grainmpm
     const std::vector<bool>                           &unknown,
     const std::vector<Tensor<2, dim>>                 &projections,
     const double                                       factor,
-    const VectorType                                  &layout_vector)
+    const VectorType                                  &layout_vector,
+    const bool                                         new_pattern)
   {
     using size_type                 = types::global_dof_index;
     const auto        &partitioner  = *layout_vector.get_partitioner();
     const MPI_Comm     communicator = partitioner.get_mpi_communicator();
     const unsigned int n_owned      = layout_vector.locally_owned_size();
-    const IndexSet    &owned        = partitioner.locally_owned_range();
-    IndexSet           writable     = owned;
-    writable.add_indices(partitioner.ghost_indices());
+    const unsigned int n_local      = n_owned + partitioner.n_ghost_indices();
 
-    std::vector<size_type>    dofs;
+    // The local unknowns (slot * dim + d, owned and ghost) of the entries
+    // of particle p whose slot is an unknown.
+    std::vector<unsigned int> dofs;
     std::vector<unsigned int> entries;
     const auto                collect = [&](const std::size_t p) {
       dofs.clear();
@@ -42,30 +44,68 @@ namespace grainmpm
           return;
         entries.push_back(e);
         for (unsigned int d = 0; d < dim; ++d)
-          dofs.push_back(partitioner.local_to_global(slot * dim + d));
+          dofs.push_back(slot * dim + d);
       });
     };
 
-    // A point couples the nodes of 2 (linear) or 3 (GIMP) cells per axis.
-    constexpr unsigned int            n_neighbours = (dim == 2 ? 25 : 125);
-    TrilinosWrappers::SparsityPattern sparsity(
-      owned, owned, writable, communicator, n_neighbours * dim);
-    // The diagonal blocks of the owned slots.
-    for (unsigned int k = 0; k < n_owned; ++k)
+    // The pattern, in local numbers (CSR over the owned and ghost rows),
+    // and the Trilinos matrix with it: a point couples the nodes of 2
+    // (linear) or 3 (GIMP) cells per axis. It depends on the slots and the
+    // points only, not on the contact status, and is kept between calls
+    // without @p new_pattern.
+    if (new_pattern || matrix.m() == 0)
       {
-        const size_type row = partitioner.local_to_global(k);
-        for (unsigned int d = 0; d < dim; ++d)
-          sparsity.add(row, row - k % dim + d);
+        std::vector<std::vector<unsigned int>> rows(n_local);
+        for (unsigned int k = 0; k < n_owned; ++k)
+          for (unsigned int d = 0; d < dim; ++d)
+            rows[k].push_back(k - k % dim + d);
+        for (std::size_t p = 0; p < models.size(); ++p)
+          if (models[p] != nullptr)
+            {
+              collect(p);
+              for (const unsigned int row : dofs)
+                rows[row].insert(rows[row].end(), dofs.begin(), dofs.end());
+            }
+        row_start.assign(n_local + 1, 0);
+        columns.clear();
+        for (unsigned int k = 0; k < n_local; ++k)
+          {
+            std::sort(rows[k].begin(), rows[k].end());
+            rows[k].erase(std::unique(rows[k].begin(), rows[k].end()),
+                          rows[k].end());
+            columns.insert(columns.end(), rows[k].begin(), rows[k].end());
+            row_start[k + 1] = columns.size();
+          }
+        global_columns.resize(columns.size());
+        for (unsigned int j = 0; j < columns.size(); ++j)
+          global_columns[j] = partitioner.local_to_global(columns[j]);
+
+        const IndexSet &owned    = partitioner.locally_owned_range();
+        IndexSet        writable = owned;
+        writable.add_indices(partitioner.ghost_indices());
+        TrilinosWrappers::SparsityPattern sparsity(owned,
+                                                   owned,
+                                                   writable,
+                                                   communicator);
+        for (unsigned int k = 0; k < n_local; ++k)
+          if (row_start[k + 1] > row_start[k])
+            sparsity.add_entries(partitioner.local_to_global(k),
+                                 global_columns.begin() + row_start[k],
+                                 global_columns.begin() + row_start[k + 1]);
+        sparsity.compress();
+        matrix.reinit(sparsity);
       }
-    for (std::size_t p = 0; p < models.size(); ++p)
-      if (models[p] != nullptr)
-        {
-          collect(p);
-          for (const size_type row : dofs)
-            sparsity.add_entries(row, dofs.begin(), dofs.end());
-        }
-    sparsity.compress();
-    matrix.reinit(sparsity);
+    else
+      matrix = 0.;
+    values.assign(columns.size(), 0.);
+    // A[row][column] += value, in the local CSR.
+    const auto add = [&](const unsigned int row,
+                         const unsigned int column,
+                         const double       value) {
+      const auto first = columns.begin() + row_start[row];
+      const auto last  = columns.begin() + row_start[row + 1];
+      values[std::lower_bound(first, last, column) - columns.begin()] += value;
+    };
 
     // The slot diagonal blocks D_s P_s + m_s (I - P_s), D_s the diagonal
     // of M; m_s delta for the slots that are not unknowns (J = I).
@@ -84,12 +124,11 @@ namespace grainmpm
           unknown[s] ?
             Tensor<2, dim>(D * P + m * (unit_symmetric_tensor<dim>() - P)) :
             Tensor<2, dim>(m * unit_symmetric_tensor<dim>());
-        const size_type first = partitioner.local_to_global(s * dim);
         for (unsigned int i = 0; i < dim; ++i)
           {
             dof_weights[s * dim + i] = m;
             for (unsigned int k = 0; k < dim; ++k)
-              matrix.add(first + i, first + k, block[i][k]);
+              add(s * dim + i, s * dim + k, block[i][k]);
           }
       }
 
@@ -98,7 +137,6 @@ namespace grainmpm
     // K_(a i)(b k) = V (lambda G_a,i G_b,k + mu G_a,k G_b,i
     //                   + mu delta_ik G_a . G_b).
     const std::vector<double> &shapes = mass_matrix.get_consistent_shapes();
-    FullMatrix<double>         local;
     for (std::size_t p = 0; p < models.size(); ++p)
       if (models[p] != nullptr)
         {
@@ -110,7 +148,6 @@ namespace grainmpm
           const double scale      = factor * volumes[p];
           const double mass =
             lumped ? 0. : fraction * mass_matrix.get_particle_masses()[p];
-          local.reinit(n * dim, n * dim);
           for (unsigned int a = 0; a < n; ++a)
             {
               const Tensor<1, dim> &ga = cache.shape_gradients[entries[a]];
@@ -133,11 +170,22 @@ namespace grainmpm
                       (mass * shapes[entries[a]] * shapes[entries[b]]) * pa;
                   for (unsigned int i = 0; i < dim; ++i)
                     for (unsigned int k = 0; k < dim; ++k)
-                      local(a * dim + i, b * dim + k) = projected[i][k];
+                      add(dofs[a * dim + i],
+                          dofs[b * dim + k],
+                          projected[i][k]);
                 }
             }
-          matrix.add(dofs, local);
         }
+
+    // Into the Trilinos matrix row by row; ghost rows go to their owners.
+    for (unsigned int k = 0; k < n_local; ++k)
+      if (row_start[k + 1] > row_start[k])
+        matrix.add(partitioner.local_to_global(k),
+                   row_start[k + 1] - row_start[k],
+                   global_columns.data() + row_start[k],
+                   values.data() + row_start[k],
+                   false,
+                   false);
     matrix.compress(VectorOperation::add);
 
     // Smoothed aggregation for a vector problem: one near-null-space mode

@@ -93,6 +93,7 @@ namespace grainmpm
       }
 
     contact.reinit_status(*layout, status);
+    preconditioner_pattern_stale = true;
 
     work_projected.reinit(old_velocities, true);
     work_theta.reinit(old_velocities, true);
@@ -203,7 +204,9 @@ namespace grainmpm
                               unknown,
                               projections,
                               theta * theta * dt * dt,
-                              *old_velocities);
+                              *old_velocities,
+                              preconditioner_pattern_stale);
+    preconditioner_pattern_stale = false;
   }
 
 

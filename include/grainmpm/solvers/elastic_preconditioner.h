@@ -78,6 +78,8 @@ namespace grainmpm
      * light), @p projections gives its frozen projection P_s as a
      * dim x dim tensor. @p factor is theta^2 dt^2. @p layout_vector is a
      * vector with the layout of the unknowns (its partitioner is used).
+     * Without @p new_pattern the sparsity pattern of the last call is
+     * kept (the same slots and points, another contact status).
      */
     void
     initialize(const TransferCache<dim>                          &cache,
@@ -88,7 +90,8 @@ namespace grainmpm
                const std::vector<bool>                           &unknown,
                const std::vector<Tensor<2, dim>>                 &projections,
                const double                                       factor,
-               const VectorType &layout_vector);
+               const VectorType                                  &layout_vector,
+               const bool new_pattern = true);
 
     /** @p dst = A^-1 (M @p src), approximately (one V-cycle). */
     void
@@ -109,10 +112,19 @@ namespace grainmpm
     }
 
   private:
-    TrilinosWrappers::SparseMatrix    matrix;
-    TrilinosWrappers::PreconditionAMG amg;
-    std::vector<double>               dof_weights;
-    mutable VectorType                weighted;
+    /**
+     * The pattern of A over the owned and ghost unknowns in local numbers
+     * (CSR: row_start, columns; global_columns the global numbers), and
+     * the values being assembled.
+     */
+    std::vector<unsigned int>            row_start;
+    std::vector<unsigned int>            columns;
+    std::vector<types::global_dof_index> global_columns;
+    std::vector<double>                  values;
+    TrilinosWrappers::SparseMatrix       matrix;
+    TrilinosWrappers::PreconditionAMG    amg;
+    std::vector<double>                  dof_weights;
+    mutable VectorType                   weighted;
   };
 } // namespace grainmpm
 

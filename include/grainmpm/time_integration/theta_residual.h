@@ -302,6 +302,8 @@ namespace grainmpm
 
     /** The assembled preconditioner, set up by setup_preconditioner(). */
     ElasticPreconditioner<dim> preconditioner;
+    /** Whether the slots changed since the preconditioner was assembled. */
+    bool preconditioner_pattern_stale = true;
 
     /** Work vectors of evaluate(). */
     mutable VectorType work_projected;
