@@ -9,7 +9,7 @@
 # Linear solver/Preconditioner = probed Jacobi and AMG. Prints wall time,
 # Newton iterations per step and GMRES iterations per Newton step, and the
 # growth of the latter from N to 2N cells. Not a test: it prints figures
-# (about 1.5 minutes).
+# (about 1 minute).
 #
 # Usage: benchmarks/preconditioner_refinement.sh [build directory=build]
 # shellcheck source=common/run_case.sh
