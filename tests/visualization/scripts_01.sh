@@ -61,7 +61,8 @@ fi
 export DISPLAY=":$(head -1 display.txt)"
 
 # pv SCRIPT ARGS: pvbatch, tried again (up to three times) if it could not
-# connect to the display, which happens now and then under load.
+# connect to the display or open its window on it (an abort in
+# vtkXOpenGLRenderWindow), which happens now and then under load.
 pv() {
   local attempt
   for attempt in 1 2 3; do
@@ -69,7 +70,8 @@ pv() {
       cat pv.log
       return 0
     fi
-    grep -q "bad X server connection" pv.log || break
+    grep -q -e "bad X server connection" -e "vtkXOpenGLRenderWindow" pv.log ||
+      break
     sleep 1
   done
   cat pv.log
