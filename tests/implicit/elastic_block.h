@@ -11,6 +11,10 @@
 
 #include <string>
 
+#include "../tests.h"
+
+#include "../implicit_fixture.h"
+
 /**
  * The common part of the implicit tests' parameter texts: 2D, the unit
  * square with @p n_cells^2 cells and free-slip faces, and the material
@@ -104,5 +108,61 @@ end
 }
 
 
+
+/**
+ * Two grains of the material "elastic" on a 10 x 10 grid in frictional
+ * contact (mu = 0.3), moving towards each other: a rectangle and a disk,
+ * implicit at dt = 5.45e-3, and @p extra.
+ */
+inline std::string
+two_grains_in_contact_parameters(const std::string &extra = "")
+{
+  return unit_square_and_material(10) + R"(
+subsection Grains
+  subsection Grain 1
+    set Shape            = rectangle
+    set Centre           = 0.3, 0.5
+    set Size             = 0.3, 0.3
+    set Material         = elastic
+    set Initial velocity = 1; 0.5
+  end
+  subsection Grain 2
+    set Shape            = disk
+    set Centre           = 0.67, 0.52
+    set Radius           = 0.16
+    set Material         = elastic
+    set Initial velocity = -1; -0.2
+  end
+end
+subsection Contact
+  set Contact model        = Coulomb friction
+  set Friction coefficient = 0.3
+end
+subsection Time stepping
+  set Scheme    = implicit theta
+  set Time step = 5.45e-3
+end
+)" + extra;
+}
+
+/**
+ * Move every point of @p fixture by a random amount of up to 1/8 cell per
+ * axis, staying in its cell: off the regular arrangement, whose GIMP boxes
+ * tile the cells exactly, a point's box reaches over a cell face and it
+ * touches 3 nodes along that axis.
+ */
+inline void
+jitter(grainmpm::ImplicitFixture<2> &fixture)
+{
+  unsigned long long state = 2026;
+  const double       h     = fixture.grid->minimum_cell_size();
+  for (auto &particle : *fixture.particle_handler)
+    {
+      const dealii::Tensor<1, 2> shift = 0.125 * h * random_vector<2>(state);
+      particle.set_location(particle.get_location() + shift);
+      particle.set_reference_location(particle.get_reference_location() +
+                                      shift / h);
+    }
+}
 
 #endif

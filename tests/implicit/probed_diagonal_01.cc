@@ -46,26 +46,6 @@ kernel_text(const std::string &kernel, const std::string &mass_matrix)
 
 
 
-// Move every point by a random amount of up to 1/8 cell per axis, staying
-// in its cell: off the regular arrangement, whose GIMP boxes tile the cells
-// exactly, a point's box reaches over a cell face and it touches 3 nodes
-// along that axis.
-void
-jitter(ImplicitFixture<2> &fixture)
-{
-  unsigned long long state = 2026;
-  const double       h     = fixture.grid->minimum_cell_size();
-  for (auto &particle : *fixture.particle_handler)
-    {
-      const Tensor<1, 2> shift = 0.125 * h * random_vector<2>(state);
-      particle.set_location(particle.get_location() + shift);
-      particle.set_reference_location(particle.get_reference_location() +
-                                      shift / h);
-    }
-}
-
-
-
 void
 check_analytic_diagonal(const std::string &kernel,
                         const std::string &mass_matrix)
@@ -162,32 +142,8 @@ void
 check_contact_diagonal(const std::string &kernel,
                        const std::string &mass_matrix)
 {
-  const std::string text = unit_square_and_material(10) + R"(
-subsection Grains
-  subsection Grain 1
-    set Shape            = rectangle
-    set Centre           = 0.3, 0.5
-    set Size             = 0.3, 0.3
-    set Material         = elastic
-    set Initial velocity = 1; 0.5
-  end
-  subsection Grain 2
-    set Shape            = disk
-    set Centre           = 0.67, 0.52
-    set Radius           = 0.16
-    set Material         = elastic
-    set Initial velocity = -1; -0.2
-  end
-end
-subsection Contact
-  set Contact model        = Coulomb friction
-  set Friction coefficient = 0.3
-end
-subsection Time stepping
-  set Scheme    = implicit theta
-  set Time step = 5.45e-3
-end
-)" + kernel_text(kernel, mass_matrix);
+  const std::string text =
+    two_grains_in_contact_parameters(kernel_text(kernel, mass_matrix));
   ImplicitFixture<2> fixture(text, "probed_diagonal_01_contact");
   jitter(fixture);
   auto &stepper       = *fixture.stepper;

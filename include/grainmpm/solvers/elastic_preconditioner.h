@@ -97,13 +97,6 @@ namespace grainmpm
     void
     vmult(VectorType &dst, const VectorType &src) const;
 
-    /** Number of nonzero entries of A (all ranks). */
-    std::size_t
-    n_nonzero_elements() const
-    {
-      return matrix.n_nonzero_elements();
-    }
-
     /** The assembled matrix (for tests). */
     const TrilinosWrappers::SparseMatrix &
     get_matrix() const
