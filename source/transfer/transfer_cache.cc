@@ -84,6 +84,7 @@ namespace grainmpm
   {
     using Layout          = MaterialPointLayout<dim>;
     this->shape_functions = shape_functions;
+    update_cells(grid, particle_handler);
     const std::size_t  n  = particle_handler.n_locally_owned_particles();
     const unsigned int per_particle =
       shape_functions == ShapeFunctions::linear ? (1U << dim) :
@@ -111,7 +112,7 @@ namespace grainmpm
         // Loop over cells, then over the particles in each cell: the node
         // table entry is looked up once per cell.
         for_each_particle(
-          grid, particle_handler, [&](const auto &cell, const auto &particle) {
+          particle_handler, [&](const auto &cell, const auto &particle) {
             const unsigned int *cell_nodes =
               grid.cell_nodes(cell->active_cell_index());
             const Point<dim> xi = particle->get_reference_location();
@@ -160,7 +161,7 @@ namespace grainmpm
         std::array<int, dim> cell_index;
         unsigned int         last_cell = numbers::invalid_unsigned_int;
         for_each_particle(
-          grid, particle_handler, [&](const auto &cell, const auto &particle) {
+          particle_handler, [&](const auto &cell, const auto &particle) {
             if (cell->active_cell_index() != last_cell)
               {
                 last_cell  = cell->active_cell_index();
@@ -246,6 +247,56 @@ namespace grainmpm
       }
     AssertDimension(p, n);
     first_entry[n] = entry;
+  }
+
+
+
+  template <int dim>
+  void
+  TransferCache<dim>::update_cells(
+    const BackgroundGrid<dim>             &grid,
+    const Particles::ParticleHandler<dim> &particle_handler)
+  {
+    const Triangulation<dim> &triangulation = grid.get_triangulation();
+    if (watched_triangulation != &triangulation)
+      {
+        watched_triangulation = &triangulation;
+        cells_valid           = false;
+        const auto invalidate = [this]() { cells_valid = false; };
+        triangulation_changed[0] =
+          triangulation.signals.any_change.connect(invalidate);
+        triangulation_changed[1] =
+          triangulation.signals.post_distributed_repartition.connect(
+            invalidate);
+        triangulation_changed[2] =
+          triangulation.signals.post_distributed_load.connect(invalidate);
+      }
+
+    if (cells_valid)
+      {
+        // Drop the cells that were emptied or handed to another rank, and
+        // count the particles in the others.
+        std::size_t n_found = 0;
+        auto        kept    = cells.begin();
+        for (const auto &cell : cells)
+          if (cell->is_locally_owned())
+            if (const auto n = particle_handler.n_particles_in_cell(cell);
+                n > 0)
+              {
+                n_found += n;
+                *kept++ = cell;
+              }
+        cells.erase(kept, cells.end());
+        if (n_found == particle_handler.n_locally_owned_particles())
+          return;
+      }
+
+    cells.clear();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() &&
+          particle_handler.n_particles_in_cell(cell) > 0)
+        cells.push_back(cell);
+    cells_valid = true;
   }
 
 

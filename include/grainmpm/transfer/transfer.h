@@ -109,17 +109,11 @@ namespace grainmpm
     for_each_particle(ParticleHandlerType &particle_handler,
                       Action             &&action) const
     {
-      // The loop of grainmpm::for_each_particle with the counter, written
-      // out so that @p action is called directly.
       std::size_t p = 0;
-      for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            auto particles = particle_handler.particles_in_cell(cell);
-            for (auto particle = particles.begin(); particle != particles.end();
-                 ++particle, ++p)
-              action(p, particle);
-          }
+      cache.for_each_particle(particle_handler,
+                              [&](const auto &, auto &particle) {
+                                action(p++, particle);
+                              });
     }
 
     /**

@@ -12,6 +12,8 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <boost/signals2/connection.hpp>
+
 #include <vector>
 
 namespace grainmpm
@@ -82,6 +84,27 @@ namespace grainmpm
            const ShapeFunctions  shape_functions = ShapeFunctions::linear,
            const Tensor<1, dim> &half_width      = Tensor<1, dim>());
 
+    /**
+     * Call @p action(cell, particle) for every locally owned particle in
+     * the order of grainmpm::for_each_particle(), visiting only the cells
+     * that held particles at the last reinit() (found there without a loop
+     * over all cells while no particle entered an empty cell and the
+     * triangulation did not change).
+     */
+    template <typename ParticleHandlerType, typename Action>
+    void
+    for_each_particle(ParticleHandlerType &particle_handler,
+                      Action             &&action) const
+    {
+      for (const auto &cell : cells)
+        {
+          auto particles = particle_handler.particles_in_cell(cell);
+          for (auto particle = particles.begin(); particle != particles.end();
+               ++particle)
+            action(cell, particle);
+        }
+    }
+
     /** Number of particles. */
     std::size_t
     n_particles() const
@@ -137,8 +160,36 @@ namespace grainmpm
     /** Slot of each entry; set by GrainFieldLayout. */
     std::vector<unsigned int> slots;
 
+    /**
+     * The locally owned active cells that hold particles, in active-cell
+     * order.
+     */
+    std::vector<typename Triangulation<dim>::active_cell_iterator> cells;
+
   private:
+    /**
+     * Bring #cells up to date: keep them while every locally owned particle
+     * is in one of them (a particle changes cells only when the particle
+     * handler sorts, and a particle that entered a cell not in the list is
+     * missing from the count) and the triangulation has not changed since;
+     * else loop over all cells.
+     */
+    void
+    update_cells(const BackgroundGrid<dim>             &grid,
+                 const Particles::ParticleHandler<dim> &particle_handler);
+
     ShapeFunctions shape_functions = ShapeFunctions::linear;
+
+    /**
+     * False when #cells must be found again: at first, and after every
+     * change of the triangulation (refinement, repartitioning, loading),
+     * which invalidates its iterators.
+     */
+    bool cells_valid = false;
+
+    /** The triangulation whose changes reset cells_valid. */
+    const Triangulation<dim>            *watched_triangulation = nullptr;
+    boost::signals2::scoped_connection triangulation_changed[3];
   };
 } // namespace grainmpm
 

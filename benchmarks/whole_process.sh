@@ -1,0 +1,146 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
+# Copyright (C) 2026 by the grainmpm authors
+#
+# The explicit step of the whole grainmpm process against the plain-array
+# kernel of the same work (benchmarks/explicit_step/plain_kernel.cc).
+#
+# The block of build/benchmarks/explicit_step as a .prm case: the cells
+# inside [0.25, 0.75]^2 of a CELLS x CELLS grid on the unit square, PER_DIR^2
+# points per cell (by default 1024 and 2: 1,048,576 points, 4 per cell), linear elastic (E = 1000, nu = 0.3, rho = 1),
+# initial velocity (0.1, 0), gravity (0, -1), free-slip walls, USF, a time
+# step of 0.1 h / c, output only at the end. grainmpm runs it for STEPS
+# steps on 1 and on 2 MPI ranks with each of the shape functions in KERNELS;
+# the step time is the TimerOutput section "explicit step" (everything a step
+# does: transfer, contact, energy diagnostics, sorting, the MPI exchanges).
+# Printed: ns per point per step, its ratio to the plain kernel (goal <= 3.5),
+# and the speed-up of 2 ranks over 1 (goal >= 1.7).
+#
+# With PERF=1 (and perf installed) the 2-rank run of the first kernel is
+# also recorded with perf: the share of the samples in the MPI library and
+# its transport (libmpi, libopen-pal, UCX, ...), which is time spent in or
+# waiting on MPI.
+#
+# Usage: [KERNELS="linear uGIMP"] [STEPS=20] [CELLS=1024] [PER_DIR=2] [PERF=1]
+#        bash benchmarks/whole_process.sh [build directory]
+# About 3 minutes on two cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+steps=${STEPS:-20}
+cells=${CELLS:-1024}
+per_dir=${PER_DIR:-2}
+kernels=${KERNELS:-linear uGIMP}
+grainmpm=$PWD/$build/source/grainmpm
+work=$PWD/$build/benchmarks/whole_process
+mkdir -p "$work"
+mpirun=(mpirun --allow-run-as-root --oversubscribe)
+
+# The P-wave speed of the block material (plane strain) and dt = 0.1 h / c.
+dt=$(awk 'BEGIN { E = 1000; nu = 0.3; rho = 1;
+  c = sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho));
+  printf "%.12g", 0.1 / '"$cells"' / c }')
+
+write_case() { # NAME KERNEL
+  cat > "$work/$1.prm" <<EOF
+set Dimension = 2
+subsection Background grid
+  set Lower corner        = 0, 0
+  set Upper corner        = 1, 1
+  set Number of cells     = $cells, $cells
+  set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip
+end
+subsection Physics
+  set Gravity               = 0, -1
+  set Two-dimensional model = plane strain
+end
+subsection Materials
+  subsection block
+    set Constitutive model = linear elastic
+    set Density            = 1
+    set Young's modulus    = 1000
+    set Poisson's ratio    = 0.3
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = rectangle
+    set Centre           = 0.5, 0.5
+    set Size             = 0.5, 0.5
+    set Material         = block
+    set Initial velocity = 0.1; 0
+  end
+end
+subsection Material points
+  set Particles per cell = $per_dir
+  set Shape functions    = $2
+end
+subsection Time stepping
+  set Scheme                  = explicit leapfrog
+  set Stress update           = USF
+  set Time step               = $dt
+  set Maximum number of steps = $steps
+end
+subsection Output
+  set Output directory = $work/$1
+  set Output interval  = 1000
+  set Write particles  = false
+  set Write grid       = false
+end
+EOF
+}
+
+# step_ns NAME: ns per point per step of the TimerOutput section.
+step_ns() {
+  local t p
+  t=$(awk -F'|' '$2 ~ "^ *explicit step *$" { gsub(/[ s]/, "", $4); print $4 }' "$work/$1.out")
+  p=$(grep -F "material points left" "$work/$1.out" | sed 's/.*: *//')
+  awk "BEGIN { printf \"%.1f\", 1e9 * $t / ($p * $steps) }"
+}
+
+plain=$("$PWD/$build/benchmarks/explicit_step" "$cells" "$per_dir" "$steps" |
+  awk '/plain-array kernel:/ { print $3 }')
+printf '%d^2 cells, %d^2 points per cell; plain-array kernel (linear, USF, one core): %.1f ns/point/step\n\n' "$cells" "$per_dir" "$plain"
+printf '%-8s %5s %18s %16s %12s\n' kernel ranks "ns/point/step" "/ plain kernel" "speed-up"
+for kernel in $kernels; do
+  write_case "$kernel" "$kernel"
+  for ranks in 1 2; do
+    (cd "$work" && "${mpirun[@]}" -np "$ranks" "$grainmpm" "$kernel.prm" > "$kernel-$ranks.out" 2>&1)
+  done
+  one=$(step_ns "$kernel-1")
+  two=$(step_ns "$kernel-2")
+  printf '%-8s %5d %18.1f %16.2f %12s\n' "$kernel" 1 "$one" "$(awk "BEGIN { print $one / $plain }")" -
+  printf '%-8s %5d %18.1f %16.2f %12.2f\n' "$kernel" 2 "$two" "$(awk "BEGIN { print $two / $plain }")" "$(awk "BEGIN { print $one / $two }")"
+done
+echo "(ns/point/step of 2 ranks: wall time x 1 / points, so the ratio to the"
+echo " one-core plain kernel falls with the speed-up; goals: 1 rank <= 3.5,"
+echo " speed-up >= 1.7)"
+
+if [ "${PERF:-0}" = 1 ] && command -v perf > /dev/null; then
+  # Sampled on 2 ranks for 1 and for 101 steps: the difference of the sample
+  # counts is that of 100 steps, without the setup.
+  kernel=${kernels%% *}
+  # samples FILE: "total MPI kernel" sample counts, MPI = the MPI library and
+  # its transport (libmpi, Open MPI's mca_* components, open-pal, PMIx,
+  # libevent, UCX), kernel = the operating system.
+  samples() {
+    perf report -i "$1" --sort dso -n --stdio 2> /dev/null |
+      awk '/^ +[0-9.]+%/ { t += $2;
+        if ($3 ~ /libmpi|mca_|open-pal|open-rte|pmix|libevent|ucx|libuc[pts]/) m += $2;
+        if ($3 ~ /kernel/) k += $2 }
+        END { print t + 0, m + 0, k + 0 }'
+  }
+  for n in 1 101; do
+    sed -i "s/Maximum number of steps = .*/Maximum number of steps = $n/" "$work/$kernel.prm"
+    rm -f "$work"/perf.$n.*
+    (cd "$work" && "${mpirun[@]}" -np 2 sh -c \
+      'exec perf record -q -F 999 -o perf.$2.$OMPI_COMM_WORLD_RANK "$0" "$1"' \
+      "$grainmpm" "$kernel.prm" "$n" > "$work/perf-$n.out" 2>&1) || true
+  done
+  for rank in 0 1; do
+    read -r t1 m1 k1 <<< "$(samples "$work/perf.1.$rank")"
+    read -r t2 m2 k2 <<< "$(samples "$work/perf.101.$rank")"
+    awk -v k0="$kernel" -v r=$rank -v t=$((t2 - t1)) -v m=$((m2 - m1)) -v k=$((k2 - k1)) 'BEGIN {
+      printf "perf, %s, rank %d, 100 steps: %.1f %% of the samples in MPI and its transport, %.1f %% in the operating system\n", k0, r, 100 * m / t, 100 * k / t }'
+  done
+fi
