@@ -461,7 +461,8 @@ namespace grainmpm
     if (contact_history)
       contact_history->add_step(stepper->get_impulses());
     const EnergySummary<dim> current =
-      energy_history->compute(particle_handler);
+      statistics.has_particle_sums ? energy_history->summarize(statistics) :
+                                     energy_history->compute(particle_handler);
     energy_history->write_row(step,
                               time.get_current_time(),
                               time.get_previous_step_size(),

@@ -31,7 +31,11 @@ namespace grainmpm
     explicit ImplicitFixture(const std::string &text, const std::string &name)
     {
       const std::string file = name + ".prm";
-      std::ofstream(file) << text;
+      // Written by one rank, read by all.
+      if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::ofstream(file) << text;
+      const int ierr = MPI_Barrier(MPI_COMM_WORLD);
+      AssertThrowMPI(ierr);
       parameters.parse(file, prm);
       grid =
         std::make_unique<BackgroundGrid<dim>>(parameters.grid, MPI_COMM_WORLD);

@@ -110,6 +110,27 @@ namespace grainmpm
 
 
   template <int dim>
+  EnergySummary<dim>
+  EnergyHistory<dim>::summarize(const StepStatistics &statistics)
+  {
+    Assert(statistics.has_particle_sums && have_initial_moment,
+           ExcInternalError());
+    EnergySummary<dim> summary;
+    summary.kinetic = statistics.kinetic_energy;
+    summary.elastic = statistics.elastic_energy;
+    Tensor<1, dim> moment;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        summary.momentum[d] = statistics.momentum[d];
+        moment[d]           = statistics.first_moment[d];
+      }
+    summary.gravity = -gravity * (moment - initial_moment);
+    return summary;
+  }
+
+
+
+  template <int dim>
   void
   EnergyHistory<dim>::write_row(const unsigned int        step,
                                 const double              time,

@@ -37,14 +37,17 @@ namespace grainmpm
         // Eqs. (8)-(10): strain from the (contact-corrected) v^n, then the
         // forces of eq. (7) from sigma^{n+1/2}, V^{n+1/2}.
         statistics.n_contact_nodes += apply_constraints(velocities_old, true);
-        transfer.update_particle_states(particle_handler,
-                                        velocities_old,
-                                        dt,
-                                        statistics.plastic_work);
+        transfer.update_particle_states_and_forces(particle_handler,
+                                                   velocities_old,
+                                                   dt,
+                                                   parameters.physics.gravity,
+                                                   forces,
+                                                   statistics.plastic_work);
       }
-    transfer.compute_forces(particle_handler,
-                            parameters.physics.gravity,
-                            forces);
+    else
+      transfer.compute_forces(particle_handler,
+                              parameters.physics.gravity,
+                              forces);
 
     integrate_grid_velocities(dt);
     copy_slot_vector(state.velocities_new, unconstrained_velocities);

@@ -244,9 +244,50 @@ namespace grainmpm
     double                          &plastic_work,
     double                          *strain_energy) const
   {
+    update_states(particle_handler,
+                  velocities,
+                  dt,
+                  plastic_work,
+                  strain_energy,
+                  Tensor<1, dim>(),
+                  nullptr);
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::update_particle_states_and_forces(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                &velocities,
+    const double                     dt,
+    const Tensor<1, dim>            &gravity,
+    VectorType                      &forces,
+    double                          &plastic_work) const
+  {
+    layout.reinit_vector(forces, dim);
+    update_states(
+      particle_handler, velocities, dt, plastic_work, nullptr, gravity, &forces);
+    forces.compress(VectorOperation::add);
+  }
+
+
+
+  template <int dim>
+  void
+  Transfer<dim>::update_states(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                &velocities,
+    const double                     dt,
+    double                          &plastic_work,
+    double                          *strain_energy,
+    const Tensor<1, dim>            &gravity,
+    VectorType                      *forces) const
+  {
     using Layout = MaterialPointLayout<dim>;
     velocities.update_ghost_values();
-    const double *const values = velocities.begin();
+    const double *const values      = velocities.begin();
+    double *const       force_array = forces != nullptr ? forces->begin() : nullptr;
     for_each_particle(
       particle_handler,
       [&](const std::size_t p, auto &particle) __attribute__((always_inline)) {
@@ -274,6 +315,24 @@ namespace grainmpm
           volume *
           model.plastic_work_density(stress,
                                      plastic_strain - old_plastic_strain);
+        if (force_array != nullptr)
+          {
+            // The force of the new stress and volume, as compute_forces().
+            const double mass = properties[Layout::mass];
+            cache.for_each_entry(p, [&](const unsigned int e) {
+              const unsigned int    slot     = cache.slots[e];
+              const double          shape    = cache.shape_values[e];
+              const Tensor<1, dim> &gradient = cache.shape_gradients[e];
+              for (unsigned int i = 0; i < dim; ++i)
+                {
+                  double divergence = 0.;
+                  for (unsigned int j = 0; j < dim; ++j)
+                    divergence += stress[i][j] * gradient[j];
+                  force_array[slot * dim + i] +=
+                    -volume * divergence + mass * shape * gravity[i];
+                }
+            });
+          }
       });
   }
 
@@ -287,14 +346,16 @@ namespace grainmpm
     // Positions are final: drop particles that left through open faces,
     // and sort only if some particle (on any rank) changed cells; sorting
     // also sends particles that left this rank's cells to their new owner.
+    // Removing is collective (the handler recounts its particles): every
+    // rank removes, also with nothing to remove, once any rank has some.
     statistics.n_removed = particles_to_remove.size();
-    if (!particles_to_remove.empty())
+    statistics.reduce(grid.get_triangulation().get_communicator());
+    if (statistics.n_removed > 0)
       {
         particle_handler.remove_particles(particles_to_remove);
         particles_to_remove.clear();
         statistics.sorted = true;
       }
-    statistics.reduce(grid.get_triangulation().get_communicator());
     if (statistics.sorted)
       particle_handler.sort_particles_into_subdomains_and_cells();
   }
@@ -391,6 +452,13 @@ namespace grainmpm
     double                particle_kinetic_change = 0.;
     std::string           error;
     bool                  error_from_rigid = false;
+    // The explicit update-stress-first step ends with this pass: gather the
+    // particle sums of the energy history here.
+    const bool gather_sums =
+      parameters.time_stepping.scheme == TimeSteppingScheme::explicit_leapfrog &&
+      parameters.time_stepping.stress_update == StressUpdate::usf;
+    double         kinetic_energy = 0., elastic_energy = 0.;
+    Tensor<1, dim> momentum, first_moment;
     velocities_new.update_ghost_values();
     velocities_p2g.update_ghost_values();
     position_velocities.update_ghost_values();
@@ -533,6 +601,17 @@ namespace grainmpm
             reference[d] += (new_position[d] - old_position[d]) / h[d];
             inside = inside && reference[d] >= 0. && reference[d] <= 1.;
           }
+        if (gather_sums && !grains[grain].rigid)
+          {
+            const double mass = properties[Layout::mass];
+            kinetic_energy += 0.5 * mass * new_velocity.norm_square();
+            momentum += mass * new_velocity;
+            first_moment += mass * new_position;
+            elastic_energy +=
+              properties[Layout::volume] *
+              materials[grains[grain].material]->strain_energy_density(
+                Layout::get_stress(properties));
+          }
         particle->set_location(new_position);
         if (inside)
           particle->set_reference_location(reference);
@@ -541,6 +620,17 @@ namespace grainmpm
       });
     throw_on_all_ranks(error, grid.get_triangulation().get_communicator());
     statistics.max_speed = std::sqrt(max_speed_square);
+    if (gather_sums)
+      {
+        statistics.has_particle_sums = true;
+        statistics.kinetic_energy    = kinetic_energy;
+        statistics.elastic_energy    = elastic_energy;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            statistics.momentum[d]     = momentum[d];
+            statistics.first_moment[d] = first_moment[d];
+          }
+      }
 
     double grid_kinetic_change = 0.;
     if (mass_matrix != nullptr && !mass_matrix->is_lumped())

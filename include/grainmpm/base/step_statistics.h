@@ -97,10 +97,29 @@ namespace grainmpm
     unsigned int rejected = 0;
 
     /**
+     * Whether the step gathered the particle sums below in its last pass
+     * over the particles (the explicit scheme with the update-stress-first
+     * order, whose grid-to-particle pass sees the final velocities,
+     * positions, stresses and volumes); otherwise EnergyHistory::compute()
+     * visits the particles again.
+     */
+    bool has_particle_sums = false;
+    /**
+     * Over the deformable particles that remain after the step: the kinetic
+     * energy sum 1/2 m |v|^2, the elastic energy sum V W(sigma), the
+     * momentum sum m v and the first moment sum m x (components beyond the
+     * dimension zero).
+     */
+    double kinetic_energy = 0.;
+    double elastic_energy = 0.;
+    double momentum[3]     = {0., 0., 0.};
+    double first_moment[3] = {0., 0., 0.};
+
+    /**
      * Add up (largest speed: maximum; sorted: or) what each rank counted
      * of its particles and slots: contact nodes, removed and held points,
-     * the transfer energy change, the plastic, friction and boundary work
-     * and the impact loss. Collective.
+     * the transfer energy change, the plastic, friction and boundary work,
+     * the impact loss and the particle sums. Collective: two reductions.
      */
     void
     reduce(const MPI_Comm communicator);

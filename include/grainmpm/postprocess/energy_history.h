@@ -151,6 +151,13 @@ namespace grainmpm
     compute(const Particles::ParticleHandler<dim> &particle_handler);
 
     /**
+     * The same from the particle sums a step gathered and reduced
+     * (StepStatistics::has_particle_sums); not collective.
+     */
+    EnergySummary<dim>
+    summarize(const StepStatistics &statistics);
+
+    /**
      * Stop every rank with a message naming the file if a write has failed.
      * Collective.
      */

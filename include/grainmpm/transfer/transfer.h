@@ -204,6 +204,20 @@ namespace grainmpm
                            double *strain_energy = nullptr) const;
 
     /**
+     * update_particle_states() and compute_forces() in one pass over the
+     * particles: the forces of the new stresses and volumes (the
+     * update-stress-first order of the explicit scheme).
+     */
+    void
+    update_particle_states_and_forces(
+      Particles::ParticleHandler<dim> &particle_handler,
+      const VectorType                &velocities,
+      const double                     dt,
+      const Tensor<1, dim>            &gravity,
+      VectorType                      &forces,
+      double                          &plastic_work) const;
+
+    /**
      * Grid to particle: FLIP/PIC velocity update from @p new_velocities
      * (the increment measured from @p reference_velocities; `Particle
      * velocity update`) and position update x += dt sum_i S_ip v_i with
@@ -236,6 +250,19 @@ namespace grainmpm
                 StepStatistics                  &statistics);
 
   private:
+    /**
+     * The loop of update_particle_states(), adding the forces to
+     * @p forces (dim per local slot) if it is given.
+     */
+    void
+    update_states(Particles::ParticleHandler<dim> &particle_handler,
+                  const VectorType                &velocities,
+                  const double                     dt,
+                  double                          &plastic_work,
+                  double                          *strain_energy,
+                  const Tensor<1, dim>            &gravity,
+                  VectorType                      *forces) const;
+
     /**
      * What is wrong with the update of the material point @p id of grain
      * @p grain from @p old_position to @p new_position and @p new_velocity
