@@ -22,13 +22,18 @@
 # its transport (libmpi, libopen-pal, UCX, ...), which is time spent in or
 # waiting on MPI.
 #
-# Usage: [KERNELS="linear uGIMP"] [STEPS=20] [CELLS=1024] [PER_DIR=2] [PERF=1]
+# Timings on this kind of machine are bimodal (the plain kernel alone takes
+# 64 or 81 ns/point/step from one run to the next), so every figure is the
+# fastest of REPEAT runs.
+#
+# Usage: [KERNELS="linear uGIMP"] [STEPS=20] [REPEAT=3] [CELLS=1024] [PER_DIR=2] [PERF=1]
 #        bash benchmarks/whole_process.sh [build directory]
-# About 3 minutes on two cores.
+# About 8 minutes on two cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 steps=${STEPS:-20}
+repeat=${REPEAT:-3}
 cells=${CELLS:-1024}
 per_dir=${PER_DIR:-2}
 kernels=${KERNELS:-linear uGIMP}
@@ -100,17 +105,23 @@ step_ns() {
   awk "BEGIN { printf \"%.1f\", 1e9 * $t / ($p * $steps) }"
 }
 
-plain=$("$PWD/$build/benchmarks/explicit_step" "$cells" "$per_dir" "$steps" |
-  awk '/plain-array kernel:/ { print $3 }')
+plain=$(for run in $(seq 1 "$repeat"); do
+  "$PWD/$build/benchmarks/explicit_step" "$cells" "$per_dir" "$steps" plain
+done | awk '/plain-array kernel:/ { if (best == "" || $3 < best) best = $3 } END { print best }')
 printf '%d^2 cells, %d^2 points per cell; plain-array kernel (linear, USF, one core): %.1f ns/point/step\n\n' "$cells" "$per_dir" "$plain"
+printf 'fastest of %d runs each\n' "$repeat"
 printf '%-8s %5s %18s %16s %12s\n' kernel ranks "ns/point/step" "/ plain kernel" "speed-up"
 for kernel in $kernels; do
   write_case "$kernel" "$kernel"
   for ranks in 1 2; do
-    (cd "$work" && "${mpirun[@]}" -np "$ranks" "$grainmpm" "$kernel.prm" > "$kernel-$ranks.out" 2>&1)
+    best=""
+    for run in $(seq 1 "$repeat"); do
+      (cd "$work" && "${mpirun[@]}" -np "$ranks" "$grainmpm" "$kernel.prm" > "$kernel-$ranks.out" 2>&1)
+      t=$(step_ns "$kernel-$ranks")
+      best=$(awk -v a="$best" -v b="$t" 'BEGIN { print (a == "" || b < a) ? b : a }')
+    done
+    if [ "$ranks" = 1 ]; then one=$best; else two=$best; fi
   done
-  one=$(step_ns "$kernel-1")
-  two=$(step_ns "$kernel-2")
   printf '%-8s %5d %18.1f %16.2f %12s\n' "$kernel" 1 "$one" "$(awk "BEGIN { print $one / $plain }")" -
   printf '%-8s %5d %18.1f %16.2f %12.2f\n' "$kernel" 2 "$two" "$(awk "BEGIN { print $two / $plain }")" "$(awk "BEGIN { print $one / $two }")"
 done

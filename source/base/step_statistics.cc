@@ -13,7 +13,7 @@ namespace grainmpm
   {
     if (Utilities::MPI::n_mpi_processes(communicator) == 1)
       return;
-    constexpr unsigned int n_sums = 16;
+    constexpr unsigned int n_sums       = 16;
     double                 sums[n_sums] = {static_cast<double>(n_contact_nodes),
                                            static_cast<double>(n_removed),
                                            static_cast<double>(n_held_at_walls),

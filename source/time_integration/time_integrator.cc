@@ -36,16 +36,21 @@ namespace grainmpm
     const GrainFieldLayout<dim> &layout = transfer.get_layout();
     state.node_in_contact.assign(layout.n_nodes(), 0);
     state.impulses.clear();
+    // With one velocity field no node has several: no normals are needed.
+    const bool normals = transfer.has_several_fields();
     transfer.particles_to_grid(particle_handler,
                                &state.masses,
                                state.momenta,
-                               &state.mass_gradients,
+                               normals ? &state.mass_gradients : nullptr,
                                contact.uses_gaps() ? &state.volumes : nullptr);
     transfer.velocities_from_momenta(state.masses,
                                      state.momenta,
                                      state.velocities_p2g);
     contact.prescribe_rigid_velocities(layout, state.velocities_p2g, time);
-    contact.compute_normals(layout, state.mass_gradients, state.normals);
+    if (normals)
+      contact.compute_normals(layout, state.mass_gradients, state.normals);
+    else
+      layout.reinit_vector(state.normals, dim);
     if (contact.uses_gaps())
       contact.compute_gaps(layout, state.volumes, dt);
   }

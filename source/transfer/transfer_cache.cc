@@ -85,7 +85,7 @@ namespace grainmpm
     using Layout          = MaterialPointLayout<dim>;
     this->shape_functions = shape_functions;
     update_cells(grid, particle_handler);
-    const std::size_t  n  = particle_handler.n_locally_owned_particles();
+    const std::size_t  n = particle_handler.n_locally_owned_particles();
     const unsigned int per_particle =
       shape_functions == ShapeFunctions::linear ? (1U << dim) :
                                                   max_nodes_per_particle;

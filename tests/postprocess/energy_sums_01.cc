@@ -31,7 +31,7 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog_on_root();
 
-  const std::string text = R"(
+  const std::string      text = R"(
 set Dimension = 2
 subsection Background grid
   set Number of cells     = 20, 20
@@ -72,12 +72,12 @@ subsection Time stepping
   set Stress update = USF
 end
 )";
-  ImplicitFixture<2>  fixture(text, "energy_sums_01");
-  ExplicitLeapfrog<2> stepper(fixture.parameters,
+  ImplicitFixture<2>     fixture(text, "energy_sums_01");
+  ExplicitLeapfrog<2>    stepper(fixture.parameters,
                               *fixture.grid,
                               fixture.grains,
                               fixture.materials);
-  EnergyHistory<2>    history("energy_sums_01.csv",
+  EnergyHistory<2>       history("energy_sums_01.csv",
                            fixture.grains,
                            fixture.materials,
                            fixture.parameters.physics.gravity,
@@ -98,13 +98,14 @@ end
         continue;
       ++n_with_sums;
       const EnergySummary<2> gathered = history.summarize(statistics);
-      const EnergySummary<2> visited = history.compute(*fixture.particle_handler);
+      const EnergySummary<2> visited =
+        history.compute(*fixture.particle_handler);
       worst = std::max({worst,
                         std::abs(gathered.kinetic - visited.kinetic),
                         std::abs(gathered.elastic - visited.elastic),
                         std::abs(gathered.gravity - visited.gravity)});
-      worst_momentum = std::max(worst_momentum,
-                                (gathered.momentum - visited.momentum).norm());
+      worst_momentum =
+        std::max(worst_momentum, (gathered.momentum - visited.momentum).norm());
     }
   deallog << "steps with gathered sums: " << n_with_sums << " of " << n_steps
           << std::endl;

@@ -110,8 +110,8 @@ namespace grainmpm
      * momentum sum m v and the first moment sum m x (components beyond the
      * dimension zero).
      */
-    double kinetic_energy = 0.;
-    double elastic_energy = 0.;
+    double kinetic_energy  = 0.;
+    double elastic_energy  = 0.;
     double momentum[3]     = {0., 0., 0.};
     double first_moment[3] = {0., 0., 0.};
 

@@ -101,6 +101,17 @@ namespace grainmpm
     }
 
     /**
+     * Whether the grains have more than one velocity field (contact, or a
+     * rigid grain): only then are there nodes with several fields, where
+     * contact needs normals.
+     */
+    bool
+    has_several_fields() const
+    {
+      return several_fields;
+    }
+
+    /**
      * Call @p action(p, particle) for every locally owned particle in the
      * order of the cache, p counting from 0.
      */
@@ -117,10 +128,10 @@ namespace grainmpm
     }
 
     /**
-     * Particle to grid: momenta sum_p m_p v_p S_ip and, if given (both or
-     * neither), masses sum_p m_p S_ip and mass gradients
-     * sum_p m_p grad S_ip per slot, and (with them, if given) the volumes
-     * sum_p V_p S_ip, completed on the owners.
+     * Particle to grid: momenta sum_p m_p v_p S_ip and, if given, masses
+     * sum_p m_p S_ip and (with them, if given) mass gradients
+     * sum_p m_p grad S_ip and volumes sum_p V_p S_ip per slot, completed
+     * on the owners.
      */
     void
     particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
@@ -287,6 +298,7 @@ namespace grainmpm
 
     std::vector<unsigned int> field_of_grain;
     std::vector<bool>         field_is_rigid;
+    bool                      several_fields = false;
     TransferCache<dim>        cache;
     GrainFieldLayout<dim>     layout;
 

@@ -188,7 +188,7 @@ namespace grainmpm
     bool cells_valid = false;
 
     /** The triangulation whose changes reset cells_valid. */
-    const Triangulation<dim>            *watched_triangulation = nullptr;
+    const Triangulation<dim>          *watched_triangulation = nullptr;
     boost::signals2::scoped_connection triangulation_changed[3];
   };
 } // namespace grainmpm
