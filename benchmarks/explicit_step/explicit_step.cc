@@ -35,7 +35,8 @@ main(int argc, char *argv[])
   if (kernel == "plain")
     {
       // Only the plain-array kernel (benchmarks/whole_process.sh).
-      const auto plain = benchmarks::run_plain_kernel(n_cells, per_dir, n_steps);
+      const auto plain =
+        benchmarks::run_plain_kernel(n_cells, per_dir, n_steps);
       std::cout << "  plain-array kernel:        " << plain.ns_per_particle_step
                 << " ns/particle/step\n";
       return 0;

@@ -227,22 +227,12 @@ namespace grainmpm
           const auto properties = particle->get_properties();
           if (grains[Layout::get_grain(properties)].rigid)
             return;
-          const double                mass   = properties[Layout::mass];
-          const double                volume = properties[Layout::volume];
-          const SymmetricTensor<2, 3> stress = Layout::get_stress(properties);
-          cache.for_each_entry(p, [&](const unsigned int e) {
-            const unsigned int    slot     = cache.slots[e];
-            const double          shape    = cache.shape_values[e];
-            const Tensor<1, dim> &gradient = cache.shape_gradients[e];
-            for (unsigned int i = 0; i < dim; ++i)
-              {
-                double divergence = 0.;
-                for (unsigned int j = 0; j < dim; ++j)
-                  divergence += stress[i][j] * gradient[j];
-                forces.local_element(slot * dim + i) +=
-                  -volume * divergence + mass * shape * gravity[i];
-              }
-          });
+          add_force(p,
+                    properties[Layout::mass],
+                    properties[Layout::volume],
+                    Layout::get_stress(properties),
+                    gravity,
+                    forces.begin());
         });
     forces.compress(VectorOperation::add);
   }
@@ -335,23 +325,8 @@ namespace grainmpm
           model.plastic_work_density(stress,
                                      plastic_strain - old_plastic_strain);
         if (force_array != nullptr)
-          {
-            // The force of the new stress and volume, as compute_forces().
-            const double mass = properties[Layout::mass];
-            cache.for_each_entry(p, [&](const unsigned int e) {
-              const unsigned int    slot     = cache.slots[e];
-              const double          shape    = cache.shape_values[e];
-              const Tensor<1, dim> &gradient = cache.shape_gradients[e];
-              for (unsigned int i = 0; i < dim; ++i)
-                {
-                  double divergence = 0.;
-                  for (unsigned int j = 0; j < dim; ++j)
-                    divergence += stress[i][j] * gradient[j];
-                  force_array[slot * dim + i] +=
-                    -volume * divergence + mass * shape * gravity[i];
-                }
-            });
-          }
+          add_force(
+            p, properties[Layout::mass], volume, stress, gravity, force_array);
       });
   }
 
