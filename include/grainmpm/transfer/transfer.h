@@ -215,34 +215,6 @@ namespace grainmpm
                            double *strain_energy = nullptr) const;
 
     /**
-     * Add the force of particle @p p (cache order) with @p mass, @p volume
-     * and @p stress under @p gravity to @p forces (dim per local slot):
-     * f_s += -V sigma . grad S_sp + m S_sp g (Cummins & Brackbill eq. 7).
-     */
-    void
-    add_force(const std::size_t            p,
-              const double                 mass,
-              const double                 volume,
-              const SymmetricTensor<2, 3> &stress,
-              const Tensor<1, dim>        &gravity,
-              double                      *forces) const
-    {
-      cache.for_each_entry(p, [&](const unsigned int e) {
-        const unsigned int    slot     = cache.slots[e];
-        const double          shape    = cache.shape_values[e];
-        const Tensor<1, dim> &gradient = cache.shape_gradients[e];
-        for (unsigned int i = 0; i < dim; ++i)
-          {
-            double divergence = 0.;
-            for (unsigned int j = 0; j < dim; ++j)
-              divergence += stress[i][j] * gradient[j];
-            forces[slot * dim + i] +=
-              -volume * divergence + mass * shape * gravity[i];
-          }
-      });
-    }
-
-    /**
      * update_particle_states() and compute_forces() in one pass over the
      * particles: the forces of the new stresses and volumes (the
      * update-stress-first order of the explicit scheme).
@@ -289,6 +261,34 @@ namespace grainmpm
                 StepStatistics                  &statistics);
 
   private:
+    /**
+     * Add the force of particle @p p (cache order) with @p mass, @p volume
+     * and @p stress under @p gravity to @p forces (dim per local slot):
+     * f_s += -V sigma . grad S_sp + m S_sp g (Cummins & Brackbill eq. 7).
+     */
+    void
+    add_force(const std::size_t            p,
+              const double                 mass,
+              const double                 volume,
+              const SymmetricTensor<2, 3> &stress,
+              const Tensor<1, dim>        &gravity,
+              double                      *forces) const
+    {
+      cache.for_each_entry(p, [&](const unsigned int e) {
+        const unsigned int    slot     = cache.slots[e];
+        const double          shape    = cache.shape_values[e];
+        const Tensor<1, dim> &gradient = cache.shape_gradients[e];
+        for (unsigned int i = 0; i < dim; ++i)
+          {
+            double divergence = 0.;
+            for (unsigned int j = 0; j < dim; ++j)
+              divergence += stress[i][j] * gradient[j];
+            forces[slot * dim + i] +=
+              -volume * divergence + mass * shape * gravity[i];
+          }
+      });
+    }
+
     /**
      * The loop of update_particle_states(), adding the forces to
      * @p forces (dim per local slot) if it is given.
