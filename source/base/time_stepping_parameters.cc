@@ -380,9 +380,10 @@ namespace grainmpm
       "simplified Jacobian (eqs. 18-20 of Cummins & Brackbill) probed "
       "matrix-free with 2 3^dim coloured residual evaluations once per step; "
       "or 'AMG': the mass plus theta^2 dt^2 times the elastic stiffness of "
-      "each grain with the frozen contact and wall constraints, assembled "
-      "and inverted by one algebraic multigrid V-cycle (Trilinos ML), set "
-      "up again after each change of the contact status. Dimensionless.",
+      "each grain with the frozen contact and wall constraints (which "
+      "couple the grains that touch), assembled and inverted by one "
+      "algebraic multigrid V-cycle (Trilinos ML), set up again after each "
+      "change of the contact status. Dimensionless.",
       Patterns::Selection("none|probed Jacobi|AMG"));
     prm.add_parameter("Jacobi weight",
                       jacobi_weight,

@@ -543,8 +543,9 @@ namespace grainmpm
     // map stays linear in the velocities; alternating it with the frozen
     // projection until the shift vanishes converges slowly without
     // friction and diverges with it (tests/contact/frozen_multi_grain_01).
-    if (reference_mode == Reference::from_velocities && rigid_field < 0 &&
-        n_deformable > 2)
+    if ((reference_mode == Reference::from_velocities ||
+         reference_mode == Reference::linear) &&
+        rigid_field < 0 && n_deformable > 2)
       restore_momentum(
         n_fields, masses, momentum_before, total_mass, velocities);
   }
@@ -887,7 +888,8 @@ namespace grainmpm
                             status.references[begin],
                             mu,
                             fields.velocities.data(),
-                            reference == Reference::zero ?
+                            reference == Reference::zero ||
+                                reference == Reference::linear ?
                               nullptr :
                               status.allowed.data() + begin);
         fields.scatter(velocities);
@@ -916,7 +918,9 @@ namespace grainmpm
             status.wall_slip_directions[w],
             Tensor<1, dim>(),
             velocity,
-            reference == Reference::zero ? 0. : status.wall_allowed[w]);
+            reference == Reference::zero || reference == Reference::linear ?
+              0. :
+              status.wall_allowed[w]);
           set_slot_vector<dim>(velocity, velocities, s);
           if (impulses != nullptr)
             impulses->walls[status.wall_faces[w]] +=

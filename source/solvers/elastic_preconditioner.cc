@@ -24,75 +24,190 @@ namespace grainmpm
     const MassMatrix<dim>                             &mass_matrix,
     const std::vector<double>                         &lumped_masses,
     const std::vector<bool>                           &unknown,
-    const std::vector<Tensor<2, dim>>                 &projections,
+    const SlotProjection<dim>                         &projection,
+    const std::vector<double>                         &masses,
     const double                                       factor,
     const VectorType                                  &layout_vector,
     const bool                                         new_pattern)
   {
-    using size_type                 = types::global_dof_index;
-    const auto        &partitioner  = *layout_vector.get_partitioner();
-    const MPI_Comm     communicator = partitioner.get_mpi_communicator();
-    const unsigned int n_owned      = layout_vector.locally_owned_size();
-    const unsigned int n_local      = n_owned + partitioner.n_ghost_indices();
+    const auto        &partitioner   = *layout_vector.get_partitioner();
+    const MPI_Comm     communicator  = partitioner.get_mpi_communicator();
+    const unsigned int n_owned       = layout_vector.locally_owned_size();
+    const unsigned int n_local       = n_owned + partitioner.n_ghost_indices();
+    const unsigned int n_local_slots = n_local / dim;
 
-    // The local unknowns (slot * dim + d, owned and ghost) of the entries
-    // of particle p whose slot is an unknown.
-    std::vector<unsigned int> dofs;
+    // The unknown slots among the entries of particle p.
     std::vector<unsigned int> entries;
     const auto                collect = [&](const std::size_t p) {
-      dofs.clear();
       entries.clear();
       cache.for_each_entry(p, [&](const unsigned int e) {
-        const unsigned int slot = cache.slots[e];
-        if (!unknown[slot])
-          return;
-        entries.push_back(e);
-        for (unsigned int d = 0; d < dim; ++d)
-          dofs.push_back(slot * dim + d);
+        if (unknown[cache.slots[e]])
+          entries.push_back(e);
       });
     };
 
-    // The pattern, in local numbers (CSR over the owned and ghost rows),
-    // and the Trilinos matrix with it: a point couples the nodes of 2
-    // (linear) or 3 (GIMP) cells per axis. It depends on the slots and the
-    // points only, not on the contact status, and is kept between calls
-    // without @p new_pattern.
     if (new_pattern || matrix.m() == 0)
       {
-        // Slot by slot (the dim unknowns of a slot share their columns),
-        // then expanded to the unknowns.
-        const unsigned int                     n_local_slots = n_local / dim;
-        std::vector<std::vector<unsigned int>> slot_columns(n_local_slots);
-        for (unsigned int s = 0; s < n_owned / dim; ++s)
-          slot_columns[s].push_back(s);
-        std::vector<unsigned int> slots;
+        // Once per step (the slots and points, not the contact status):
+        // the raw matrix theta^2 dt^2 K + the consistent mass off the
+        // diagonal, slot by slot (grain by grain, a point couples the nodes
+        // of 2 (linear) or 3 (GIMP) cells per axis), ...
+        std::vector<unsigned int> slot_start(n_local_slots + 1, 0);
         for (std::size_t p = 0; p < models.size(); ++p)
           if (models[p] != nullptr)
             {
               collect(p);
-              slots.clear();
-              for (unsigned int a = 0; a < entries.size(); ++a)
-                slots.push_back(dofs[a * dim] / dim);
-              for (const unsigned int slot : slots)
-                slot_columns[slot].insert(slot_columns[slot].end(),
-                                          slots.begin(),
-                                          slots.end());
+              for (const unsigned int e : entries)
+                ++slot_start[cache.slots[e] + 1];
             }
+        for (unsigned int s = 0; s < n_local_slots; ++s)
+          slot_start[s + 1] += slot_start[s];
+        std::vector<unsigned int> slot_particles(slot_start.back());
+        {
+          std::vector<unsigned int> fill(slot_start.begin(),
+                                         slot_start.end() - 1);
+          for (std::size_t p = 0; p < models.size(); ++p)
+            if (models[p] != nullptr)
+              {
+                collect(p);
+                for (const unsigned int e : entries)
+                  slot_particles[fill[cache.slots[e]]++] = p;
+              }
+        }
+        std::vector<unsigned int> mark(n_local_slots,
+                                       numbers::invalid_unsigned_int);
+        raw_start.assign(n_local_slots + 1, 0);
+        raw_columns.clear();
+        for (unsigned int a = 0; a < n_local_slots; ++a)
+          {
+            const std::size_t first = raw_columns.size();
+            for (unsigned int k = slot_start[a]; k < slot_start[a + 1]; ++k)
+              {
+                collect(slot_particles[k]);
+                for (const unsigned int e : entries)
+                  if (mark[cache.slots[e]] != a)
+                    {
+                      mark[cache.slots[e]] = a;
+                      raw_columns.push_back(cache.slots[e]);
+                    }
+              }
+            std::sort(raw_columns.begin() + first, raw_columns.end());
+            raw_start[a + 1] = raw_columns.size();
+          }
+        raw_stiffness.assign(raw_columns.size(), Tensor<2, dim>());
+        raw_mass.assign(raw_columns.size(), 0.);
+        const bool   lumped   = mass_matrix.is_lumped();
+        const double fraction = lumped ? 0. : mass_matrix.get_fraction();
+        const std::vector<double> &shapes = mass_matrix.get_consistent_shapes();
+        std::vector<unsigned int>  positions;
+        for (std::size_t p = 0; p < models.size(); ++p)
+          if (models[p] != nullptr)
+            {
+              collect(p);
+              const unsigned int n    = entries.size();
+              const auto [lambda, mu] = models[p]->lame_parameters();
+              const double scale      = factor * volumes[p];
+              const double mass =
+                lumped ? 0. : fraction * mass_matrix.get_particle_masses()[p];
+              for (unsigned int a = 0; a < n; ++a)
+                {
+                  const unsigned int    slot_a = cache.slots[entries[a]];
+                  const Tensor<1, dim> &ga = cache.shape_gradients[entries[a]];
+                  const auto first = raw_columns.begin() + raw_start[slot_a];
+                  const auto last = raw_columns.begin() + raw_start[slot_a + 1];
+                  for (unsigned int b = 0; b < n; ++b)
+                    {
+                      const unsigned int slot_b = cache.slots[entries[b]];
+                      const std::size_t  k =
+                        std::lower_bound(first, last, slot_b) -
+                        raw_columns.begin();
+                      const Tensor<1, dim> &gb =
+                        cache.shape_gradients[entries[b]];
+                      const double    dot   = ga * gb;
+                      Tensor<2, dim> &block = raw_stiffness[k];
+                      for (unsigned int i = 0; i < dim; ++i)
+                        for (unsigned int j = 0; j < dim; ++j)
+                          block[i][j] += scale * (lambda * ga[i] * gb[j] +
+                                                  mu * ga[j] * gb[i] +
+                                                  (i == j ? mu * dot : 0.));
+                      if (a != b)
+                        raw_mass[k] +=
+                          mass * shapes[entries[a]] * shapes[entries[b]];
+                    }
+                }
+            }
+
+        // ... and the pattern of A: P couples the slots of a node
+        // (SlotProjection::groups), so row r has the columns of the raw
+        // rows of its node's slots, each widened to its node's slots.
+        const auto group = [&](const unsigned int slot) {
+          return std::make_pair(projection.groups.begin() +
+                                  projection.group_start[slot],
+                                projection.groups.begin() +
+                                  projection.group_start[slot + 1]);
+        };
+        std::fill(mark.begin(), mark.end(), numbers::invalid_unsigned_int);
+        std::vector<unsigned int> slot_columns_start(n_local_slots + 1, 0);
+        std::vector<unsigned int> slot_columns;
+        const auto                add_column = [&](const unsigned int row,
+                                    const unsigned int column) {
+          if (unknown[column] && mark[column] != row)
+            {
+              mark[column] = row;
+              slot_columns.push_back(column);
+            }
+        };
+        for (unsigned int r = 0; r < n_local_slots; ++r)
+          {
+            const std::size_t first = slot_columns.size();
+            if (!unknown[r])
+              {
+                if (r < n_owned / dim)
+                  slot_columns.push_back(r);
+              }
+            else
+              {
+                const auto [g_begin, g_end] = group(r);
+                for (auto g = g_begin; g != g_end; ++g)
+                  {
+                    add_column(r, *g);
+                    for (unsigned int k = raw_start[*g]; k < raw_start[*g + 1];
+                         ++k)
+                      {
+                        const auto [c_begin, c_end] = group(raw_columns[k]);
+                        for (auto c = c_begin; c != c_end; ++c)
+                          add_column(r, *c);
+                      }
+                  }
+              }
+            std::sort(slot_columns.begin() + first, slot_columns.end());
+            slot_columns_start[r + 1] = slot_columns.size();
+          }
         row_start.assign(n_local + 1, 0);
         columns.clear();
         for (unsigned int s = 0; s < n_local_slots; ++s)
-          {
-            std::vector<unsigned int> &list = slot_columns[s];
-            std::sort(list.begin(), list.end());
-            list.erase(std::unique(list.begin(), list.end()), list.end());
-            for (unsigned int i = 0; i < dim; ++i)
-              {
-                for (const unsigned int column : list)
-                  for (unsigned int k = 0; k < dim; ++k)
-                    columns.push_back(column * dim + k);
-                row_start[s * dim + i + 1] = columns.size();
-              }
-          }
+          for (unsigned int i = 0; i < dim; ++i)
+            {
+              for (unsigned int k = slot_columns_start[s];
+                   k < slot_columns_start[s + 1];
+                   ++k)
+                for (unsigned int j = 0; j < dim; ++j)
+                  columns.push_back(slot_columns[k] * dim + j);
+              row_start[s * dim + i + 1] = columns.size();
+            }
+        // Where each raw block lands without projection: its offset in the
+        // row of its slot.
+        raw_offsets.resize(raw_columns.size());
+        for (unsigned int a = 0; a < n_local_slots; ++a)
+          for (unsigned int k = raw_start[a]; k < raw_start[a + 1]; ++k)
+            raw_offsets[k] =
+              dim *
+              (std::lower_bound(slot_columns.begin() + slot_columns_start[a],
+                                slot_columns.begin() +
+                                  slot_columns_start[a + 1],
+                                raw_columns[k]) -
+               (slot_columns.begin() + slot_columns_start[a]));
+
         global_columns.resize(columns.size());
         for (unsigned int j = 0; j < columns.size(); ++j)
           global_columns[j] = partitioner.local_to_global(columns[j]);
@@ -115,90 +230,111 @@ namespace grainmpm
     else
       matrix = 0.;
     values.assign(columns.size(), 0.);
-    // A[row][column] += value, in the local CSR.
-    const auto add = [&](const unsigned int row,
-                         const unsigned int column,
-                         const double       value) {
-      const auto first = columns.begin() + row_start[row];
-      const auto last  = columns.begin() + row_start[row + 1];
-      values[std::lower_bound(first, last, column) - columns.begin()] += value;
+    // A[row slot][column slot] += block, in the local CSR (the dim
+    // unknowns of a slot are consecutive columns).
+    const auto add = [&](const unsigned int    row,
+                         const unsigned int    column,
+                         const Tensor<2, dim> &block) {
+      for (unsigned int i = 0; i < dim; ++i)
+        {
+          const auto    first = columns.begin() + row_start[row * dim + i];
+          const auto    last  = columns.begin() + row_start[row * dim + i + 1];
+          double *const entry =
+            values.data() +
+            (std::lower_bound(first, last, column * dim) - columns.begin());
+          for (unsigned int k = 0; k < dim; ++k)
+            entry[k] += block[i][k];
+        }
     };
 
-    // The slot diagonal blocks D_s P_s + m_s (I - P_s), D_s the diagonal
-    // of M; m_s delta for the slots that are not unknowns (J = I).
-    const bool         lumped   = mass_matrix.is_lumped();
-    const double       fraction = mass_matrix.get_fraction();
-    const unsigned int n_slots  = n_owned / dim;
+    // The columns of Q = M_L P M_L^-1: the rows r with Q_ra != 0 for each
+    // slot a, and Q_ra = m_r P_ra / m_a.
+    std::vector<unsigned int> q_start(n_local_slots + 1, 0);
+    for (unsigned int r = 0; r < n_local_slots; ++r)
+      for (unsigned int k = projection.start[r]; k < projection.start[r + 1];
+           ++k)
+        ++q_start[projection.partners[k] + 1];
+    for (unsigned int a = 0; a < n_local_slots; ++a)
+      q_start[a + 1] += q_start[a];
+    std::vector<unsigned int>   q_rows(q_start.back());
+    std::vector<Tensor<2, dim>> q_blocks(q_start.back());
+    {
+      std::vector<unsigned int> fill(q_start.begin(), q_start.end() - 1);
+      for (unsigned int r = 0; r < n_local_slots; ++r)
+        for (unsigned int k = projection.start[r]; k < projection.start[r + 1];
+             ++k)
+          {
+            const unsigned int a = projection.partners[k];
+            q_rows[fill[a]]      = r;
+            q_blocks[fill[a]++] =
+              (masses[r] / masses[a]) * projection.blocks[k];
+          }
+    }
+    // Slots that P leaves alone and that no other slot's row refers to:
+    // their raw blocks go in unchanged.
+    const Tensor<2, dim> identity = unit_symmetric_tensor<dim>();
+    std::vector<bool>    plain(n_local_slots, false);
+    for (unsigned int s = 0; s < n_local_slots; ++s)
+      plain[s] = unknown[s] &&
+                 projection.start[s + 1] == projection.start[s] + 1 &&
+                 projection.partners[projection.start[s]] == s &&
+                 projection.blocks[projection.start[s]] == identity &&
+                 q_start[s + 1] == q_start[s] + 1;
+
+    // M_L (I - P) and Q D, D the diagonal of M, on the owned slots;
+    // m_s delta for the slots that are not unknowns (J = I).
+    const bool         lumped  = mass_matrix.is_lumped();
+    const unsigned int n_slots = n_owned / dim;
     dof_weights.resize(n_owned);
     for (unsigned int s = 0; s < n_slots; ++s)
       {
         const double m = lumped_masses[s];
+        for (unsigned int i = 0; i < dim; ++i)
+          dof_weights[s * dim + i] = m;
+        add(s, s, m * identity);
+        if (!unknown[s])
+          continue;
+        for (unsigned int k = projection.start[s]; k < projection.start[s + 1];
+             ++k)
+          add(s, projection.partners[k], -m * projection.blocks[k]);
         const double D =
           lumped ? m : mass_matrix.get_diagonal().local_element(s * dim);
-        const Tensor<2, dim> P =
-          unknown[s] ? projections[s] : unit_symmetric_tensor<dim>();
-        const Tensor<2, dim> block =
-          unknown[s] ?
-            Tensor<2, dim>(D * P + m * (unit_symmetric_tensor<dim>() - P)) :
-            Tensor<2, dim>(m * unit_symmetric_tensor<dim>());
-        for (unsigned int i = 0; i < dim; ++i)
-          {
-            dof_weights[s * dim + i] = m;
-            for (unsigned int k = 0; k < dim; ++k)
-              add(s * dim + i, s * dim + k, block[i][k]);
-          }
+        for (unsigned int k = q_start[s]; k < q_start[s + 1]; ++k)
+          add(q_rows[k], s, D * q_blocks[k]);
       }
 
-    // From the points: theta^2 dt^2 P_a K_ab P_b, and the consistent mass
-    // alpha m_p S_a S_b P_a off the diagonal, with
-    // K_(a i)(b k) = V (lambda G_a,i G_b,k + mu G_a,k G_b,i
-    //                   + mu delta_ik G_a . G_b).
-    const std::vector<double> &shapes = mass_matrix.get_consistent_shapes();
-    for (std::size_t p = 0; p < models.size(); ++p)
-      if (models[p] != nullptr)
+    // Q (theta^2 dt^2 K) P + Q M_C, M_C the consistent mass off the
+    // diagonal.
+    for (unsigned int a = 0; a < n_local_slots; ++a)
+      for (unsigned int k = raw_start[a]; k < raw_start[a + 1]; ++k)
         {
-          collect(p);
-          const unsigned int n = entries.size();
-          if (n == 0)
-            continue;
-          const auto [lambda, mu] = models[p]->lame_parameters();
-          const double scale      = factor * volumes[p];
-          const double mass =
-            lumped ? 0. : fraction * mass_matrix.get_particle_masses()[p];
-          for (unsigned int a = 0; a < n; ++a)
+          const unsigned int b = raw_columns[k];
+          if (plain[a] && plain[b])
             {
-              const Tensor<1, dim> &ga = cache.shape_gradients[entries[a]];
-              const Tensor<2, dim> &pa = projections[cache.slots[entries[a]]];
-              for (unsigned int b = 0; b < n; ++b)
+              Tensor<2, dim> block = raw_stiffness[k];
+              for (unsigned int i = 0; i < dim; ++i)
+                block[i][i] += raw_mass[k];
+              for (unsigned int i = 0; i < dim; ++i)
                 {
-                  const Tensor<1, dim> &gb = cache.shape_gradients[entries[b]];
-                  const Tensor<2, dim> &pb =
-                    projections[cache.slots[entries[b]]];
-                  Tensor<2, dim> block;
-                  const double   dot = ga * gb;
-                  for (unsigned int i = 0; i < dim; ++i)
-                    for (unsigned int k = 0; k < dim; ++k)
-                      block[i][k] =
-                        scale * (lambda * ga[i] * gb[k] + mu * ga[k] * gb[i] +
-                                 (i == k ? mu * dot : 0.));
-                  Tensor<2, dim> projected = pa * block * pb;
-                  if (a != b && mass != 0.)
-                    projected +=
-                      (mass * shapes[entries[a]] * shapes[entries[b]]) * pa;
-                  // The dim unknowns of a slot are consecutive columns.
-                  for (unsigned int i = 0; i < dim; ++i)
-                    {
-                      const unsigned int row = dofs[a * dim + i];
-                      const auto    first    = columns.begin() + row_start[row];
-                      const auto    last = columns.begin() + row_start[row + 1];
-                      double *const entry =
-                        values.data() +
-                        (std::lower_bound(first, last, dofs[b * dim]) -
-                         columns.begin());
-                      for (unsigned int k = 0; k < dim; ++k)
-                        entry[k] += projected[i][k];
-                    }
+                  double *const entry =
+                    values.data() + row_start[a * dim + i] + raw_offsets[k];
+                  for (unsigned int j = 0; j < dim; ++j)
+                    entry[j] += block[i][j];
                 }
+              continue;
+            }
+          for (unsigned int q = q_start[a]; q < q_start[a + 1]; ++q)
+            {
+              const unsigned int row = q_rows[q];
+              if (!unknown[row])
+                continue;
+              if (raw_mass[k] != 0.)
+                add(row, b, raw_mass[k] * q_blocks[q]);
+              const Tensor<2, dim> left = q_blocks[q] * raw_stiffness[k];
+              for (unsigned int j = projection.start[b];
+                   j < projection.start[b + 1];
+                   ++j)
+                add(row, projection.partners[j], left * projection.blocks[j]);
             }
         }
 

@@ -150,37 +150,128 @@ namespace grainmpm
   void
   ThetaResidual<dim>::setup_preconditioner(const VectorType &)
   {
-    // P_s column by column: the linear part of the frozen projection is
-    // slot-wise (reference velocities fixed), so one probe per direction
-    // with a unit vector in every unknown slot gives all P_s at once; a
-    // probe of ones marks the unknowns among the ghost slots.
-    const unsigned int          n_owned = layout->n_slots();
-    const unsigned int          n_local = layout->n_local_slots();
-    std::vector<Tensor<2, dim>> projections(n_local);
-    std::vector<bool>           unknown(n_local, false);
-    VectorType                  probe;
+    const unsigned int n_owned = layout->n_slots();
+    const unsigned int n_local = layout->n_local_slots();
+    VectorType         probe;
     probe.reinit(*old_velocities, true);
-    for (unsigned int d = 0; d <= dim; ++d)
+
+    // The unknowns among the owned and ghost slots: a probe of ones.
+    std::vector<bool> unknown(n_local, false);
+    probe = 0.;
+    for (unsigned int s = 0; s < n_owned; ++s)
+      if (slot_active[s] && !slot_rigid[s])
+        probe.local_element(s * dim) = 1.;
+    probe.update_ghost_values();
+    for (unsigned int s = 0; s < n_local; ++s)
+      unknown[s] = probe.local_element(s * dim) != 0.;
+    probe.zero_out_ghost_values();
+
+    // The slots of each node that this rank knows, and the place of each
+    // slot among the slots of its node (its owner's numbering; ghost slots
+    // learn it from the owner). Kept with the pattern.
+    if (preconditioner_pattern_stale)
       {
-        probe = 0.;
-        for (unsigned int s = 0; s < n_owned; ++s)
-          if (slot_active[s] && !slot_rigid[s])
-            probe.local_element(s * dim + (d < dim ? d : 0)) = 1.;
-        if (d < dim)
-          apply_projection(probe, GrainContact<dim>::Reference::zero, nullptr);
-        probe.update_ghost_values();
+        VectorType index;
+        layout->reinit_vector(index, 1);
+        unsigned int largest = 0;
+        for (unsigned int node = 0; node < layout->n_nodes(); ++node)
+          {
+            const unsigned int begin = layout->node_slots_begin(node);
+            const unsigned int end   = layout->node_slots_end(node);
+            largest                  = std::max(largest, end - begin);
+            for (unsigned int s = begin; s < end; ++s)
+              index.local_element(s) = s - begin;
+          }
+        slots_per_node = Utilities::MPI::max(largest, communicator());
+        index.update_ghost_values();
+        slot_places.resize(n_local);
         for (unsigned int s = 0; s < n_local; ++s)
-          if (d < dim)
+          slot_places[s] = static_cast<unsigned int>(index.local_element(s));
+
+        // Ghost slots grouped by node.
+        std::vector<std::pair<unsigned int, unsigned int>> ghosts;
+        for (unsigned int s = n_owned; s < n_local; ++s)
+          ghosts.emplace_back(layout->node(s), s);
+        std::sort(ghosts.begin(), ghosts.end());
+        projection.group_start.assign(n_local + 1, 0);
+        projection.groups.clear();
+        for (unsigned int s = 0; s < n_owned; ++s)
+          {
+            const unsigned int node = layout->node(s);
+            for (unsigned int t = layout->node_slots_begin(node);
+                 t < layout->node_slots_end(node);
+                 ++t)
+              projection.groups.push_back(t);
+            projection.group_start[s + 1] = projection.groups.size();
+          }
+        for (unsigned int s = n_owned; s < n_local; ++s)
+          {
+            const auto first =
+              std::lower_bound(ghosts.begin(),
+                               ghosts.end(),
+                               std::make_pair(layout->node(s), 0U));
+            for (auto g = first;
+                 g != ghosts.end() && g->first == layout->node(s);
+                 ++g)
+              projection.groups.push_back(g->second);
+            projection.group_start[s + 1] = projection.groups.size();
+          }
+      }
+
+    // P column by column: its linear part is node-wise, so one probe per
+    // place j among the slots of a node and direction d, a unit vector in
+    // the j-th slot of every node, gives the columns (j, d) of all node
+    // blocks at once.
+    std::vector<Tensor<2, dim>> blocks(n_local * slots_per_node);
+    std::vector<bool>           seen(n_local * slots_per_node, false);
+    for (unsigned int j = 0; j < slots_per_node; ++j)
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          probe = 0.;
+          for (unsigned int node = 0; node < layout->n_nodes(); ++node)
+            {
+              const unsigned int s = layout->node_slots_begin(node) + j;
+              if (s < layout->node_slots_end(node) && unknown[s])
+                probe.local_element(s * dim + d) = 1.;
+            }
+          apply_projection(probe,
+                           GrainContact<dim>::Reference::linear,
+                           nullptr);
+          probe.update_ghost_values();
+          for (unsigned int s = 0; s < n_local; ++s)
             for (unsigned int i = 0; i < dim; ++i)
-              projections[s][i][d] = probe.local_element(s * dim + i);
-          else
-            unknown[s] = probe.local_element(s * dim) != 0.;
-        probe.zero_out_ghost_values();
+              {
+                const double value = probe.local_element(s * dim + i);
+                blocks[s * slots_per_node + j][i][d] = value;
+                if (value != 0.)
+                  seen[s * slots_per_node + j] = true;
+              }
+          probe.zero_out_ghost_values();
+        }
+    projection.start.assign(n_local + 1, 0);
+    projection.partners.clear();
+    projection.blocks.clear();
+    for (unsigned int s = 0; s < n_local; ++s)
+      {
+        if (unknown[s])
+          for (unsigned int k = projection.group_start[s];
+               k < projection.group_start[s + 1];
+               ++k)
+            {
+              const unsigned int t = projection.groups[k];
+              const unsigned int j = slot_places[t];
+              if (unknown[t] && seen[s * slots_per_node + j])
+                {
+                  projection.partners.push_back(t);
+                  projection.blocks.push_back(blocks[s * slots_per_node + j]);
+                }
+            }
+        projection.start[s + 1] = projection.partners.size();
       }
 
     // The lumped masses that divide the residual; for the rows that are
     // not unknowns (rigid, light slots: J = I) the mean of those, to keep
-    // A balanced.
+    // A balanced. And the masses of all local slots, for Q.
     std::vector<double> lumped_masses(n_owned, 0.);
     double              sums[2] = {0., 0.};
     for (unsigned int s = 0; s < n_owned; ++s)
@@ -195,6 +286,11 @@ namespace grainmpm
     const double mean = sums[1] > 0. ? sums[0] / sums[1] : 1.;
     for (unsigned int s = 0; s < n_owned; ++s)
       lumped_masses[s] = unknown[s] ? masses->local_element(s) : mean;
+    VectorType ghosted_masses(*masses);
+    ghosted_masses.update_ghost_values();
+    std::vector<double> local_masses(n_local);
+    for (unsigned int s = 0; s < n_local; ++s)
+      local_masses[s] = unknown[s] ? ghosted_masses.local_element(s) : mean;
 
     preconditioner.initialize(transfer->get_cache(),
                               particle_models,
@@ -202,7 +298,8 @@ namespace grainmpm
                               *mass_matrix,
                               lumped_masses,
                               unknown,
-                              projections,
+                              projection,
+                              local_masses,
                               theta * theta * dt * dt,
                               *old_velocities,
                               preconditioner_pattern_stale);
@@ -255,7 +352,8 @@ namespace grainmpm
     // identity.
     if (!status.any_active)
       return 0;
-    const bool affine    = (reference != GrainContact<dim>::Reference::zero);
+    const bool affine    = (reference != GrainContact<dim>::Reference::zero &&
+                         reference != GrainContact<dim>::Reference::linear);
     const unsigned int n = v.locally_owned_size();
     if (affine)
       for (unsigned int k = 0; k < n; ++k)

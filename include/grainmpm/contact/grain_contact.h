@@ -163,13 +163,18 @@ namespace grainmpm
      * with the momentum-restoring shift at nodes of three or more
      * deformable fields), the value frozen with the status (no shift: the
      * preconditioner's simplified Jacobian), or zero (no shift: the linear
-     * part of the frozen projection, which acts on velocity differences).
+     * part of the simplified projection, which acts on velocity
+     * differences). `linear` takes it from the velocities as
+     * `from_velocities` does, shift included, but leaves out the approach
+     * the gap allows: the linear part of the full frozen projection, which
+     * couples the fields of a node (the assembled preconditioner).
      */
     enum class Reference
     {
       from_velocities,
       frozen,
-      zero
+      zero,
+      linear
     };
 
     /**

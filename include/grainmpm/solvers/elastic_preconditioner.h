@@ -20,39 +20,58 @@
 namespace grainmpm
 {
   /**
+   * The linear part P of the frozen contact and wall projection of the
+   * implicit residual, row by row over the owned and ghost slots of the
+   * layout: (P z)_a = sum_k blocks[k] z_partners[k] for k in
+   * [start[a], start[a + 1]), the partners being slots of the node of a
+   * (a itself among them). Contact couples the fields of a node through
+   * their centre-of-mass (or rigid) reference velocity; walls act on the
+   * slot alone. groups[group_start[a] .. group_start[a + 1]) lists the
+   * slots of the node of a that this rank knows (all of them at owned
+   * nodes): the couplings P may have whatever the contact status.
+   */
+  template <int dim>
+  struct SlotProjection
+  {
+    std::vector<unsigned int>   start;
+    std::vector<unsigned int>   partners;
+    std::vector<Tensor<2, dim>> blocks;
+    std::vector<unsigned int>   group_start;
+    std::vector<unsigned int>   groups;
+  };
+
+
+
+  /**
    * An assembled approximation of the Jacobian of the implicit theta
    * residual, inverted approximately by one algebraic multigrid V-cycle
    * (Trilinos ML through TrilinosWrappers::PreconditionAMG). The outer
    * solver stays Jacobian-free; this only replaces the probed diagonal.
    *
    * The residual (ThetaResidual) is R = P R_raw + (V - P V) with the
-   * frozen contact projection P, R_raw = V - v^n - dt (f(v^theta) / m + g)
-   * and v^theta = (1 - theta) v^n + theta P V. Linearising the internal
-   * force of a linear elastic grain, df / dV = -theta^2 dt K P with the
-   * small-strain stiffness K = sum_p V_p B_p^T C B_p, and holding the
-   * contact reference velocities fixed (the simplified Jacobian of the
-   * probed diagonal), P acts slot by slot and
+   * frozen contact projection P, R_raw = M_L^-1 M (V - v^n) - dt (f(v^theta)
+   * / m + g) and v^theta = (1 - theta) v^n + theta P V. Linearising the
+   * internal force of a linear elastic grain, df / dV = -theta^2 dt K P
+   * with the small-strain stiffness K = sum_p V_p B_p^T C B_p, gives
    *
-   *   J = M_L^-1 A,  A = P M + M_L (I - P) + theta^2 dt^2 P K P,
+   *   J = M_L^-1 A,  A = Q M + M_L (I - P) + theta^2 dt^2 Q K P,
+   *   Q = M_L P M_L^-1,
    *
    * with M the grid mass matrix (lumped M_L, or blended with the
-   * consistent mass) and M_L the lumped mass that divides the residual
-   * (P acts slot by slot and commutes with M_L; for the lumped mass
-   * A = M_L + theta^2 dt^2 P K P). This class assembles A over the slots of
-   * every deformable grain (block diagonal by grain: grains couple only
-   * through the contact law, which P expresses by removing the constrained
-   * directions) and applies z = A^-1 (M r) approximately. P K P is
-   * symmetric where P is (free, frictionless and sticking slots); with
-   * Coulomb sliding P is not (the tangential correction follows the
-   * normal one), and neither is A at
-   * those few rows. Slots that are
+   * consistent mass) and M_L the lumped mass that divides the residual.
+   * P is the linear part of the full frozen projection (SlotProjection):
+   * at a contact node it couples the fields through their common reference
+   * velocity, so that A couples the grains that touch; for frictionless
+   * contact, sticking and walls P is M_L-orthogonal, Q = P^T and A is
+   * symmetric, with Coulomb sliding it is not (the tangential correction
+   * follows the normal one). K is block diagonal by grain. Slots that are
    * not unknowns (rigid, too light) have R = V - something, J = I: their
-   * rows are M_ss delta.
+   * rows are m_s delta.
    *
    * What A leaves out: the geometric stiffness (sigma^n and the volume
-   * change), plasticity (the elastic tangent is used), the consistent part
-   * of a blended mass matrix, and the coupling of a contact pair through
-   * the centre-of-mass reference velocity. GMRES corrects for these.
+   * change), plasticity (the elastic tangent is used), and at nodes owned
+   * by another MPI rank the couplings to the fields this rank does not
+   * see there. GMRES corrects for these.
    *
    * In parallel the rows are the locally owned unknowns of the slot
    * layout; particles add to ghost rows, which Trilinos sends to their
@@ -75,8 +94,9 @@ namespace grainmpm
      * which the residual is divided (for slots that are not unknowns any
      * positive number), @p unknown says for each owned and ghost slot
      * whether it is an unknown of the elastic system (deformable, not
-     * light), @p projections gives its frozen projection P_s as a
-     * dim x dim tensor. @p factor is theta^2 dt^2. @p layout_vector is a
+     * light), @p projection the linear part of the frozen projection.
+     * @p masses holds the lumped mass of every owned and ghost slot (for
+     * Q). @p factor is theta^2 dt^2. @p layout_vector is a
      * vector with the layout of the unknowns (its partitioner is used).
      * Without @p new_pattern the sparsity pattern of the last call is
      * kept (the same slots and points, another contact status).
@@ -88,7 +108,8 @@ namespace grainmpm
                const MassMatrix<dim>                             &mass_matrix,
                const std::vector<double>                         &lumped_masses,
                const std::vector<bool>                           &unknown,
-               const std::vector<Tensor<2, dim>>                 &projections,
+               const SlotProjection<dim>                         &projection,
+               const std::vector<double>                         &masses,
                const double                                       factor,
                const VectorType                                  &layout_vector,
                const bool new_pattern = true);
@@ -110,6 +131,11 @@ namespace grainmpm
      * (CSR: row_start, columns; global_columns the global numbers), and
      * the values being assembled.
      */
+    std::vector<unsigned int>            raw_start;
+    std::vector<unsigned int>            raw_columns;
+    std::vector<Tensor<2, dim>>          raw_stiffness;
+    std::vector<double>                  raw_mass;
+    std::vector<unsigned int>            raw_offsets;
     std::vector<unsigned int>            row_start;
     std::vector<unsigned int>            columns;
     std::vector<types::global_dof_index> global_columns;

@@ -304,6 +304,14 @@ namespace grainmpm
     ElasticPreconditioner<dim> preconditioner;
     /** Whether the slots changed since the preconditioner was assembled. */
     bool preconditioner_pattern_stale = true;
+    /**
+     * The linear part of the frozen projection for the preconditioner,
+     * the largest number of slots at a node (any rank), and the place of
+     * each owned and ghost slot among the slots of its node.
+     */
+    SlotProjection<dim>       projection;
+    unsigned int              slots_per_node = 0;
+    std::vector<unsigned int> slot_places;
 
     /** Work vectors of evaluate(). */
     mutable VectorType work_projected;
