@@ -299,10 +299,10 @@ namespace grainmpm
       max_status_changes,
       "The contact status (which grains touch, stick or slip) is frozen "
       "within a Newton iteration and re-evaluated between iterations; after "
-      "this many changes in one step it is kept fixed. With 1 it is decided "
-      "at the first iterate and once more after the first Newton "
-      "iteration; on packings further changes flip contacts back and forth "
-      "without settling. Dimensionless.",
+      "this many changes in one step it is kept fixed. With 2 it is decided "
+      "at the first iterate and after the first two Newton iterations; on "
+      "packings further changes flip contacts back and forth without "
+      "settling, and frictional contacts need the second. Dimensionless.",
       Patterns::Integer(0, 100));
     prm.add_parameter(
       "Contact status tolerance",

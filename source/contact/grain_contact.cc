@@ -858,7 +858,10 @@ namespace grainmpm
   {
     if (!status.any_active)
       return 0;
-    const double                mu = friction_coefficient();
+    // The preconditioner's linear part leaves out the friction of sliding
+    // slots (see Reference::linear).
+    const double mu =
+      reference == Reference::linear ? 0. : friction_coefficient();
     NodeFields<dim>             fields(layout);
     std::vector<Tensor<1, dim>> before;
     unsigned int                n_active = 0;
@@ -914,7 +917,9 @@ namespace grainmpm
           apply_state(
             status.wall_state[w],
             face_normal(status.wall_faces[w]),
-            wall_friction(grid.boundary_condition(status.wall_faces[w])),
+            reference == Reference::linear ?
+              0. :
+              wall_friction(grid.boundary_condition(status.wall_faces[w])),
             status.wall_slip_directions[w],
             Tensor<1, dim>(),
             velocity,

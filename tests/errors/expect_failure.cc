@@ -7,7 +7,9 @@
 // "# MPI ranks: N" in the .prm runs grainmpm on N ranks through mpiexec,
 // a line "# Check parameters only" runs grainmpm --check-parameters;
 // Open MPI's own report of the failed job (between lines of dashes, with
-// process ids) is left out of the output.
+// process ids) is left out of the output. On several ranks mpiexec forwards
+// standard output and standard error through separate channels, so their
+// order is not defined; there the error stream is printed after the output.
 
 #include <sys/wait.h>
 
@@ -37,7 +39,8 @@ main(int argc, char *argv[])
   if (n_ranks > 1)
     command = std::string(GRAINMPM_MPIEXEC) + " -n " + std::to_string(n_ranks) +
               " --allow-run-as-root --oversubscribe " + command;
-  command += " 2>&1";
+  const std::string error_file = "grainmpm_standard_error";
+  command += n_ranks > 1 ? " 2>" + error_file : std::string(" 2>&1");
   std::cout << std::flush;
 
   FILE *pipe = popen(command.c_str(), "r");
@@ -62,6 +65,17 @@ main(int argc, char *argv[])
     }
   const int status    = pclose(pipe);
   const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (n_ranks > 1)
+    {
+      std::ifstream errors(error_file);
+      bool          in_report = false;
+      for (std::string error_line; std::getline(errors, error_line);)
+        if (error_line.rfind("------", 0) == 0)
+          in_report = !in_report;
+        else if (!in_report)
+          std::cout << error_line << '\n';
+      std::remove(error_file.c_str());
+    }
   std::cout << "exit code: " << exit_code << std::endl;
   return exit_code == 1 ? 0 : 1;
 }

@@ -336,7 +336,7 @@ namespace grainmpm
     double           differencing_error   = 0.;
     bool             line_search          = true;
     unsigned int     max_line_search_cuts = 10;
-    unsigned int     max_status_changes   = 1;
+    unsigned int     max_status_changes   = 2;
     /** Hysteresis band of the contact status, in units of U. */
     double status_tolerance = 0.;
 

@@ -166,8 +166,10 @@ namespace grainmpm
      * part of the simplified projection, which acts on velocity
      * differences). `linear` takes it from the velocities as
      * `from_velocities` does, shift included, but leaves out the approach
-     * the gap allows: the linear part of the full frozen projection, which
-     * couples the fields of a node (the assembled preconditioner).
+     * the gap allows and the friction of sliding fields and walls (the
+     * tangential correction that follows the normal one): the symmetric
+     * part of the linearised frozen projection, which couples the fields
+     * of a node, for the assembled preconditioner.
      */
     enum class Reference
     {

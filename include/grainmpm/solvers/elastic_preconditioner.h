@@ -63,13 +63,16 @@ namespace grainmpm
    * at a contact node it couples the fields through their common reference
    * velocity, so that A couples the grains that touch; for frictionless
    * contact, sticking and walls P is M_L-orthogonal, Q = P^T and A is
-   * symmetric, with Coulomb sliding it is not (the tangential correction
-   * follows the normal one). K is block diagonal by grain. Slots that are
+   * symmetric. With Coulomb sliding the tangential correction follows the
+   * normal one and P is not; that friction term is left out of P here
+   * (GrainContact::Reference::linear), which keeps A symmetric for the
+   * smoothed aggregation. K is block diagonal by grain. Slots that are
    * not unknowns (rigid, too light) have R = V - something, J = I: their
    * rows are m_s delta.
    *
-   * What A leaves out: the geometric stiffness (sigma^n and the volume
-   * change), plasticity (the elastic tangent is used), and at nodes owned
+   * What A leaves out: the friction of sliding slots, the geometric
+   * stiffness (sigma^n, the volume change and the stress rotation),
+   * plasticity (the elastic tangent is used), and at nodes owned
    * by another MPI rank the couplings to the fields this rank does not
    * see there. GMRES corrects for these.
    *
