@@ -15,7 +15,9 @@
 # iterations per Newton iteration, contact status changes per step, and the
 # force the disks put on the platen (walls.csv) averaged over the whole run
 # and over its last tenth, each against the reference run. Not a test: it
-# prints figures (30 disks: about 10 minutes; 300 disks: about 90 minutes).
+# prints figures (30 disks with FACTORS="10 30 100": about 15 minutes; 300
+# disks with FACTORS="30 100" FRICTIONS=0.3 END_TIME=0.3: about 45 minutes;
+# the defaults take hours).
 #
 # Usage: benchmarks/implicit_packing.sh [build directory=build]
 # Environment: PACKING (30 or 300), FACTORS (the implicit steps in units of
