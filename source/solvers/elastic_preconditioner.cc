@@ -22,10 +22,9 @@ namespace grainmpm
     const std::vector<const ConstitutiveModel<dim> *> &models,
     const std::vector<double>                         &volumes,
     const MassMatrix<dim>                             &mass_matrix,
-    const std::vector<double>                         &lumped_masses,
+    const std::vector<double>                         &masses,
     const std::vector<bool>                           &unknown,
     const SlotProjection<dim>                         &projection,
-    const std::vector<double>                         &masses,
     const double                                       factor,
     const VectorType                                  &layout_vector,
     const bool                                         new_pattern)
@@ -288,7 +287,7 @@ namespace grainmpm
     dof_weights.resize(n_owned);
     for (unsigned int s = 0; s < n_slots; ++s)
       {
-        const double m = lumped_masses[s];
+        const double m = masses[s];
         for (unsigned int i = 0; i < dim; ++i)
           dof_weights[s * dim + i] = m;
         add(s, s, m * identity);

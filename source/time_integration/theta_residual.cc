@@ -269,11 +269,10 @@ namespace grainmpm
         projection.start[s + 1] = projection.partners.size();
       }
 
-    // The lumped masses that divide the residual; for the rows that are
-    // not unknowns (rigid, light slots: J = I) the mean of those, to keep
-    // A balanced. And the masses of all local slots, for Q.
-    std::vector<double> lumped_masses(n_owned, 0.);
-    double              sums[2] = {0., 0.};
+    // The lumped masses that divide the residual, of the owned and ghost
+    // slots (Q needs both); for the rows that are not unknowns (rigid,
+    // light slots: J = I) the mean of those, to keep A balanced.
+    double sums[2] = {0., 0.};
     for (unsigned int s = 0; s < n_owned; ++s)
       if (unknown[s])
         {
@@ -284,9 +283,7 @@ namespace grainmpm
                         communicator(),
                         ArrayView<double>(sums, 2));
     const double mean = sums[1] > 0. ? sums[0] / sums[1] : 1.;
-    for (unsigned int s = 0; s < n_owned; ++s)
-      lumped_masses[s] = unknown[s] ? masses->local_element(s) : mean;
-    VectorType ghosted_masses(*masses);
+    VectorType   ghosted_masses(*masses);
     ghosted_masses.update_ghost_values();
     std::vector<double> local_masses(n_local);
     for (unsigned int s = 0; s < n_local; ++s)
@@ -296,10 +293,9 @@ namespace grainmpm
                               particle_models,
                               particle_volumes,
                               *mass_matrix,
-                              lumped_masses,
+                              local_masses,
                               unknown,
                               projection,
-                              local_masses,
                               theta * theta * dt * dt,
                               *old_velocities,
                               preconditioner_pattern_stale);

@@ -65,12 +65,10 @@ main(int argc, char **argv)
   const Compression usl = compress("usl", "slow_compression_explicit.prm", "");
   const Compression usf =
     compress("usf", "slow_compression_explicit.prm", "USF");
-  const double W_implicit = implicit.W, E_implicit = implicit.E;
-  const double W_usl = usl.W, E_usl = usl.E, W_usf = usf.W, E_usf = usf.E;
 
   const auto yes = [](const bool b) { return b ? "yes" : "no"; };
   deallog << "implicit: E / W within [0.97, 1.0]: "
-          << yes(E_implicit / W_implicit > 0.97 && E_implicit <= W_implicit)
+          << yes(implicit.E / implicit.W > 0.97 && implicit.E <= implicit.W)
           << std::endl;
   // At 30 times the explicit step the contact status of a slowly
   // compressed packing is decided with two updates a step (Nonlinear
@@ -81,10 +79,10 @@ main(int argc, char **argv)
           << ", no rejected step: " << yes(implicit.rejected == 0.)
           << std::endl;
   deallog << "explicit USL: W within 5 % of the implicit W: "
-          << yes(std::abs(W_usl / W_implicit - 1.) < 0.05)
-          << ", E / W <= 1 (no energy created): " << yes(E_usl <= W_usl)
-          << ", E / W >= 0.85: " << yes(E_usl >= 0.85 * W_usl) << std::endl;
+          << yes(std::abs(usl.W / implicit.W - 1.) < 0.05)
+          << ", E / W <= 1 (no energy created): " << yes(usl.E <= usl.W)
+          << ", E / W >= 0.85: " << yes(usl.E >= 0.85 * usl.W) << std::endl;
   deallog << "explicit USF: E / W > 1.2 (energy created): "
-          << yes(E_usf > 1.2 * W_usf) << ", W more than 5 % above implicit: "
-          << yes(W_usf > 1.05 * W_implicit) << std::endl;
+          << yes(usf.E > 1.2 * usf.W) << ", W more than 5 % above implicit: "
+          << yes(usf.W > 1.05 * implicit.W) << std::endl;
 }

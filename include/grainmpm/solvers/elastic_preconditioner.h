@@ -93,13 +93,12 @@ namespace grainmpm
      * gradients), @p models the constitutive model of each particle in
      * cache order (nullptr for rigid grains), @p volumes their volumes at
      * t^n, @p mass_matrix the grid mass matrix M (lumped or blended).
-     * @p lumped_masses holds the lumped mass m_s of each owned slot by
+     * @p masses holds the lumped mass m_s of each owned and ghost slot by
      * which the residual is divided (for slots that are not unknowns any
      * positive number), @p unknown says for each owned and ghost slot
      * whether it is an unknown of the elastic system (deformable, not
      * light), @p projection the linear part of the frozen projection.
-     * @p masses holds the lumped mass of every owned and ghost slot (for
-     * Q). @p factor is theta^2 dt^2. @p layout_vector is a
+     * @p factor is theta^2 dt^2. @p layout_vector is a
      * vector with the layout of the unknowns (its partitioner is used).
      * Without @p new_pattern the sparsity pattern of the last call is
      * kept (the same slots and points, another contact status).
@@ -109,10 +108,9 @@ namespace grainmpm
                const std::vector<const ConstitutiveModel<dim> *> &models,
                const std::vector<double>                         &volumes,
                const MassMatrix<dim>                             &mass_matrix,
-               const std::vector<double>                         &lumped_masses,
+               const std::vector<double>                         &masses,
                const std::vector<bool>                           &unknown,
                const SlotProjection<dim>                         &projection,
-               const std::vector<double>                         &masses,
                const double                                       factor,
                const VectorType                                  &layout_vector,
                const bool new_pattern = true);
