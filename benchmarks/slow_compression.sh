@@ -47,15 +47,15 @@ for friction in ["0", "0.3"]:
     runs = {s: columns(f"{s}_{friction}") for s in ["implicit", "usl", "usf"]}
     W_implicit = runs["implicit"]["boundary_work"][-1]
     print(f"\nfriction coefficient {friction}\n")
-    print("| scheme | W(1) | W / W_implicit | E(1) / W | friction work / W | impact loss / W | transfers / W | balance / W |")
+    print("| scheme | W(1) | W / W_implicit | E(1) / W | friction work / W | transfers / W | leapfrog / W | balance / W |")
     print("|---|---|---|---|---|---|---|---|")
     for s, label in [("implicit", "implicit, CFL 7.5"), ("usl", "explicit USL, CFL 0.25"),
                      ("usf", "explicit USF, CFL 0.25")]:
         c = runs[s]
         W = c["boundary_work"][-1]
         print(f"| {label} | {W:.4g} | {W / W_implicit:.3f} | {c['total_energy'][-1] / W:.3f} "
-              f"| {c['friction_work'][-1] / W:.3f} | {c['impact_loss'][-1] / W:.3f} "
-              f"| {c['transfer_work'][-1] / W:.3f} "
+              f"| {c['friction_work'][-1] / W:.3f} | {c['transfer_work'][-1] / W:.3f} "
+              f"| {c['leapfrog_work'][-1] / W:.3f} "
               f"| {c['balance_residual'][-1] / W:.3f} |")
     print("\nplaten force F = dW/dt / v over (t - 0.1, t]:\n")
     print("| t | " + " | ".join(f"{t:.1f}" for t in times) + " |")

@@ -88,11 +88,11 @@ def main(argv):
     import matplotlib.pyplot as plt
 
     runs = [read_columns(f) for f in arguments.files]
-    ledger = ["plastic_work", "friction_work", "boundary_work", "impact_loss",
-              "transfer_work", "balance_residual"]
-    # (impact_loss: explicit runs since it was added; optional)
+    ledger = ["plastic_work", "friction_work", "boundary_work", "transfer_work",
+              "leapfrog_work", "balance_residual"]
+    # (leapfrog_work: files written since it was added; optional)
     with_ledger = all(
-        all(name in run for name in ledger if name != "impact_loss") for run in runs
+        all(name in run for name in ledger if name != "leapfrog_work") for run in runs
     )
     n_rows = 3 if with_ledger else 2
 
@@ -147,8 +147,8 @@ def main(argv):
                 "plastic_work": "m-",
                 "friction_work": "c-",
                 "boundary_work": "y-",
-                "impact_loss": "r--",
                 "transfer_work": "b--",
+                "leapfrog_work": "r--",
                 "balance_residual": "k-",
             }
             for name in ledger:

@@ -21,7 +21,7 @@ namespace grainmpm
                                            plastic_work,
                                            friction_work,
                                            boundary_work,
-                                           impact_loss,
+                                           leapfrog_energy_change,
                                            kinetic_energy,
                                            elastic_energy,
                                            momentum[0],
@@ -40,7 +40,7 @@ namespace grainmpm
     plastic_work           = sums[4];
     friction_work          = sums[5];
     boundary_work          = sums[6];
-    impact_loss            = sums[7];
+    leapfrog_energy_change = sums[7];
     kinetic_energy         = sums[8];
     elastic_energy         = sums[9];
     for (unsigned int d = 0; d < 3; ++d)

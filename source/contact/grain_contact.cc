@@ -1055,30 +1055,6 @@ namespace grainmpm
 
 
 
-  template <int dim>
-  double
-  GrainContact<dim>::impact_loss(const GrainFieldLayout<dim> &layout,
-                                 const VectorType            &masses,
-                                 const VectorType            &before,
-                                 const VectorType            &after,
-                                 const VectorType            &old) const
-  {
-    double loss = 0.;
-    for (unsigned int node = 0; node < layout.n_nodes(); ++node)
-      for (unsigned int s = layout.node_slots_begin(node);
-           s < layout.node_slots_end(node);
-           ++s)
-        if (!field_is_rigid[layout.field(s)])
-          loss +=
-            0.5 * masses.local_element(s) *
-            ((get_slot_vector<dim>(after, s) -
-              get_slot_vector<dim>(before, s)) *
-             (get_slot_vector<dim>(after, s) - get_slot_vector<dim>(old, s)));
-    return loss;
-  }
-
-
-
   template class GrainContact<2>;
   template class GrainContact<3>;
 } // namespace grainmpm

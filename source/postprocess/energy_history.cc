@@ -44,7 +44,7 @@ namespace grainmpm
           << energy << "],transfer_energy_change [" << energy
           << "],gravity_potential [" << energy << "],plastic_work [" << energy
           << "],friction_work [" << energy << "],boundary_work [" << energy
-          << "],impact_loss [" << energy << "],transfer_work [" << energy
+          << "],transfer_work [" << energy << "],leapfrog_work [" << energy
           << "],balance_residual [" << energy << "]\n"
           << std::flush;
     });
@@ -156,8 +156,8 @@ namespace grainmpm
         << std::setprecision(12) << statistics.grid_energy_change << ','
         << statistics.transfer_energy_change << ',' << summary.gravity << ','
         << ledger.plastic_work << ',' << ledger.friction_work << ','
-        << ledger.boundary_work << ',' << ledger.impact_loss << ','
-        << ledger.transfer << ',' << ledger.balance(summary, initial) << '\n'
+        << ledger.boundary_work << ',' << ledger.transfer << ','
+        << ledger.leapfrog << ',' << ledger.balance(summary, initial) << '\n'
         << std::flush;
   }
 

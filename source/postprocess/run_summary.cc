@@ -117,10 +117,10 @@ namespace grainmpm
         << ": plastic work = " << ledger.plastic_work / reference
         << ", friction work = " << ledger.friction_work / reference
         << ", boundary work = " << ledger.boundary_work / reference;
+    out << ", transfers = " << ledger.transfer / reference;
     if (!implicit)
-      out << ", impact loss = " << ledger.impact_loss / reference;
-    out << ", transfers = " << ledger.transfer / reference
-        << ", balance residual = "
+      out << ", leapfrog = " << ledger.leapfrog / reference;
+    out << ", balance residual = "
         << ledger.balance(current_energy, initial_energy) / reference
         << " (largest " << largest_balance / reference << ")\n"
         << "  largest plastic strain:   " << largest_plastic_strain << "\n";

@@ -60,11 +60,6 @@ namespace grainmpm
                               state.velocities_new);
     statistics.friction_work += friction_work;
     statistics.boundary_work += boundary_work;
-    statistics.impact_loss += contact.impact_loss(layout,
-                                                  state.masses,
-                                                  unconstrained_velocities,
-                                                  state.velocities_new,
-                                                  velocities_old);
     contact.prescribe_rigid_velocities(layout, state.velocities_new, time + dt);
 
     transfer.grid_to_particles(particle_handler,

@@ -62,11 +62,11 @@ check_rows(const std::string                                &name,
       std::max(worst,
                std::abs(c.at("balance_residual")[k] -
                         (total[k] - E0 + c.at("plastic_work")[k] +
-                         c.at("friction_work")[k] + c.at("impact_loss")[k] -
-                         c.at("boundary_work")[k] - c.at("transfer_work")[k])));
+                         c.at("friction_work")[k] - c.at("boundary_work")[k] -
+                         c.at("transfer_work")[k] - c.at("leapfrog_work")[k])));
   deallog << name << ": " << total.size() - 1 << " steps" << std::endl;
-  deallog << "  balance column = E - E0 + plastic + friction + impact "
-             "- boundary - transfer: "
+  deallog << "  balance column = E - E0 + plastic + friction - boundary "
+             "- transfer - leapfrog: "
           << yes_no(worst <= 1e-9 * scale) << std::endl;
   return scale;
 }

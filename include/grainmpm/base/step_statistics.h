@@ -84,15 +84,19 @@ namespace grainmpm
     double friction_work = 0.;
     double boundary_work = 0.;
     /**
-     * Explicit scheme: what the contact, wall and rigid-grain constraints
-     * on v^{n+1} take out beyond the friction work, booked as the work of
-     * their reactions on the step's mean velocity (v^n + v^{n+1}) / 2
-     * minus that on v^{n+1} (GrainContact::impact_loss()): each node where
-     * two fields approaching at t^n meet makes a perfectly inelastic
-     * impact of their nodal masses. Zero in the implicit scheme, whose
-     * constraints act on v^theta, the velocity they do work on.
+     * Explicit scheme: the energy the leapfrog's exchange between kinetic
+     * and strain energy adds (<= 0), sum_p 1/2 m_p |dv_p|^2 -
+     * sum_s 1/2 m_s |dv_s|^2 with the step's grid velocity change
+     * dv_s = v_s^{n+1} - v_s^n (forces and constraints) and its
+     * interpolation dv_p = sum_s S_sp dv_s to the deformable particles
+     * (Transfer::grid_to_particles()): the kinetic energy of the
+     * grid-scale part of dv that the particles' strain does not see. Booked
+     * with Stress update = USL only: USF and MUSL take the strain from
+     * another velocity than the one the forces changed, and their exchange
+     * stays in the balance. Zero in the implicit scheme, which books the
+     * grid energy change instead.
      */
-    double impact_loss = 0.;
+    double leapfrog_energy_change = 0.;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
 
@@ -119,7 +123,8 @@ namespace grainmpm
      * Add up (largest speed: maximum; sorted: or) what each rank counted
      * of its particles and slots: contact nodes, removed and held points,
      * the transfer energy change, the plastic, friction and boundary work,
-     * the impact loss and the particle sums. Collective: two reductions.
+     * the leapfrog energy change and the particle sums. Collective: two
+     * reductions.
      */
     void
     reduce(const MPI_Comm communicator);

@@ -314,26 +314,6 @@ namespace grainmpm
                     const VectorType            &rate) const;
 
     /**
-     * The energy an explicit step's constraints take out in impacts: the
-     * work of the reactions m_s (after_s - before_s) on the end velocity
-     * @p after minus their work on the step's mean velocity
-     * (@p old + @p after) / 2, summed over the deformable slots:
-     * sum_s 1/2 m_s (after_s - before_s) . (after_s - old_s). The work on
-     * the mean velocity is the midpoint rule for the power of the
-     * reactions over the step; constraint_work() books the friction work
-     * on the end velocity, and this is the rest. For a node where two
-     * fields approaching at t^n meet it is the loss of the perfectly
-     * inelastic impact of their nodal masses; under sustained contact
-     * (after = old) it vanishes.
-     */
-    double
-    impact_loss(const GrainFieldLayout<dim> &layout,
-                const VectorType            &masses,
-                const VectorType            &before,
-                const VectorType            &after,
-                const VectorType            &old) const;
-
-    /**
      * The contact law at one node with @p n_fields fields: masses, rigid
      * flags, normals, and the velocities to correct in place, deciding the
      * states (slots with mass not above @p mass_threshold are left alone).

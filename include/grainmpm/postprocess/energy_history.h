@@ -71,10 +71,11 @@ namespace grainmpm
     /** Work put in by rigid grains (and walls, which are at rest). */
     double boundary_work = 0.;
     /**
-     * What the explicit constraints took out in impacts of nodal masses
-     * (StepStatistics::impact_loss); 0 implicit.
+     * Energy the explicit leapfrog's exchange between kinetic and strain
+     * energy added (<= 0, StepStatistics::leapfrog_energy_change); 0
+     * implicit.
      */
-    double impact_loss = 0.;
+    double leapfrog = 0.;
     /**
      * Energy the grid-to-particle transfers added (FLIP: <= 0, the
      * lumped-mass loss).
@@ -85,8 +86,7 @@ namespace grainmpm
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &plastic_work &friction_work &boundary_work &impact_loss
-        &transfer;
+      archive &plastic_work &friction_work &boundary_work &leapfrog &transfer;
     }
 
     /** Add the step's entries. */
@@ -96,21 +96,21 @@ namespace grainmpm
       plastic_work += statistics.plastic_work;
       friction_work += statistics.friction_work;
       boundary_work += statistics.boundary_work;
-      impact_loss += statistics.impact_loss;
+      leapfrog += statistics.leapfrog_energy_change;
       transfer += statistics.transfer_energy_change;
     }
 
     /**
-     * E(now) - E(0) + plastic + friction + impact loss - boundary
-     * - transfer: zero for an exact balance.
+     * E(now) - E(0) + plastic + friction - boundary - transfer
+     * - leapfrog: zero for an exact balance.
      */
     template <int dim>
     double
     balance(const EnergySummary<dim> &now,
             const EnergySummary<dim> &initial) const
     {
-      return now.total() - initial.total() + plastic_work + friction_work +
-             impact_loss - boundary_work - transfer;
+      return now.total() - initial.total() + plastic_work + friction_work -
+             boundary_work - transfer - leapfrog;
     }
   };
 
