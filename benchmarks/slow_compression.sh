@@ -7,10 +7,12 @@
 # and with Coulomb friction 0.3: implicit theta = 1/2 at CFL 7.5 (the
 # shipped case: 30 times the explicit step, AMG preconditioner), explicit
 # at CFL 0.25 with Stress update = USL (the shipped explicit case) and with
-# the default USF. Prints the platen work W, the end energy E and the ledger
-# in units of W, the explicit platen work relative to the implicit one, and
-# the platen force curves F(t) = dW/dt / 0.037 averaged over windows of
-# 0.1. Not a test: it prints figures (about 5 minutes).
+# the default USF, and explicit USL without friction at CFL 0.125. Prints
+# the platen work W, the end energy E and the ledger in units of W, the
+# explicit platen work relative to the implicit one, the platen force
+# curves F(t) = dW/dt / 0.037 averaged over windows of 0.1, and the
+# explicit USL ledger over time. Not a test: it prints figures (about 6
+# minutes).
 #
 # Usage: benchmarks/slow_compression.sh [build directory=build]
 # shellcheck source=common/run_case.sh
@@ -27,6 +29,9 @@ for friction in 0 0.3; do
   run "usf_$friction" slow_compression_explicit \
     "$contact\nsubsection Time stepping\n  set Stress update = USF\nend"
 done
+# The explicit ledger at half the step, frictionless.
+run usl_0_half slow_compression_explicit \
+  "subsection Contact\n  set Contact model = frictionless\nend\nsubsection Time stepping\n  set CFL number = 0.125\nend"
 
 python3 - "$work" <<'PYTHON'
 import csv, sys
@@ -65,4 +70,16 @@ for friction in ["0", "0.3"]:
         forces = [(at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)) / (0.1 * speed)
                   for t in times]
         print(f"| {s} | " + " | ".join(f"{f:.4f}" for f in forces) + " |")
+print("\nexplicit USL ledger: transfers, leapfrog and balance in units of W(1), "
+      "the balance at t = 0.1, ..., 1 in units of W(t):\n")
+print("| friction | CFL | transfers / W | leapfrog / W | balance / W(t) at t = 0.1, 0.2, ..., 1 | largest \\|balance\\| / W(1) |")
+print("|---|---|---|---|---|---|")
+for name, friction, cfl in [("usl_0", "0", "0.25"), ("usl_0_half", "0", "0.125"),
+                            ("usl_0.3", "0.3", "0.25")]:
+    c = columns(name)
+    W = c["boundary_work"][-1]
+    balances = " ".join(f"{at(c, 'balance_residual', t) / at(c, 'boundary_work', t):+.4f}"
+                        for t in times)
+    print(f"| {friction} | {cfl} | {c['transfer_work'][-1] / W:.3f} | {c['leapfrog_work'][-1] / W:.3f} "
+          f"| {balances} | {max(abs(b) for b in c['balance_residual']) / W:.4f} |")
 PYTHON
