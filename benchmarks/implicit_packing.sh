@@ -23,7 +23,8 @@
 # Environment: PACKING (30 or 300), FACTORS (the implicit steps in units of
 # the explicit one; default "10 30 100 300"), FRICTIONS (default "0 0.3"),
 # PRECONDITIONER (a Linear solver/Preconditioner; default that of the case),
-# END_TIME (default 1).
+# END_TIME (default 1), THETA (the implicit runs' theta; default that of
+# the case, 1/2).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
@@ -55,6 +56,9 @@ end_text="subsection Time stepping\n  set End time = $end_time\nend"
 solver_text=""
 if [ -n "${PRECONDITIONER:-}" ]; then
   solver_text="subsection Linear solver\n  set Preconditioner = $PRECONDITIONER\nend"
+fi
+if [ -n "${THETA:-}" ]; then
+  solver_text="$solver_text\nsubsection Time stepping\n  set Theta = $THETA\nend"
 fi
 echo "$packing disks to t = $end_time; implicit runs: ${PRECONDITIONER:-as in the case}"
 
