@@ -129,7 +129,8 @@ namespace grainmpm
                           block[i][j] += scale * (lambda * ga[i] * gb[j] +
                                                   mu * ga[j] * gb[i] +
                                                   (i == j ? mu * dot : 0.));
-                      if (a != b)
+                      // (The lumped mass has no consistent shapes.)
+                      if (!lumped && a != b)
                         raw_mass[k] +=
                           mass * shapes[entries[a]] * shapes[entries[b]];
                     }
