@@ -7,11 +7,13 @@
 # and with Coulomb friction 0.3: implicit theta = 1/2 at CFL 7.5 (the
 # shipped case: 30 times the explicit step, AMG preconditioner), explicit
 # at CFL 0.25 with Stress update = USL (the shipped explicit case) and with
-# the default USF, and explicit USL without friction at CFL 0.125. Prints
+# the default USF; without friction also explicit USL at CFL 0.125 and
+# with 1 % PIC, and implicit with the lumped mass. Prints
 # the platen work W, the end energy E and the ledger in units of W, the
 # explicit platen work relative to the implicit one, the platen force
-# curves F(t) = dW/dt / 0.037 averaged over windows of 0.1, and the
-# explicit USL ledger over time. Not a test: it prints figures (about 6
+# curves F(t) = dW/dt / 0.037 averaged over windows of 0.1, the
+# frictionless windows of the variants against explicit USL, and the
+# explicit USL ledger over time. Not a test: it prints figures (about 8
 # minutes).
 #
 # Usage: benchmarks/slow_compression.sh [build directory=build]
@@ -32,6 +34,12 @@ done
 # The explicit ledger at half the step, frictionless.
 run usl_0_half slow_compression_explicit \
   "subsection Contact\n  set Contact model = frictionless\nend\nsubsection Time stepping\n  set CFL number = 0.125\nend"
+# How the frictionless force windows depend on the dissipation: explicit
+# with 1 % PIC in the velocity update, implicit with the lumped mass.
+run usl_0_pic slow_compression_explicit \
+  "subsection Contact\n  set Contact model = frictionless\nend\nsubsection Time stepping\n  set Particle velocity update = blend\n  set FLIP fraction = 0.99\nend"
+run implicit_0_lumped slow_compression_implicit \
+  "subsection Contact\n  set Contact model = frictionless\nend\nsubsection Time stepping\n  set Mass matrix = lumped\nend"
 
 python3 - "$work" <<'PYTHON'
 import csv, sys
@@ -70,6 +78,18 @@ for friction in ["0", "0.3"]:
         forces = [(at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)) / (0.1 * speed)
                   for t in times]
         print(f"| {s} | " + " | ".join(f"{f:.4f}" for f in forces) + " |")
+print("\nfrictionless: E(1) / W and the platen force windows over those of explicit USL, CFL 0.25:\n")
+print("| run | E(1) / W | W / W_USL | " + " | ".join(f"{t:.1f}" for t in times) + " |")
+print("|---|---|---|" + "---|" * len(times))
+usl = columns("usl_0")
+def window(c, t):
+    return at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)
+for name, label in [("usl_0_half", "explicit USL, CFL 0.125"), ("usl_0_pic", "explicit USL, FLIP fraction 0.99"),
+                    ("implicit_0", "implicit (blended mass)"), ("implicit_0_lumped", "implicit, lumped mass")]:
+    c = columns(name)
+    W = c["boundary_work"][-1]
+    print(f"| {label} | {c['total_energy'][-1] / W:.3f} | {W / usl['boundary_work'][-1]:.3f} | "
+          + " | ".join(f"{window(c, t) / window(usl, t):.3f}" for t in times) + " |")
 print("\nexplicit USL ledger: transfers, leapfrog and balance in units of W(1), "
       "the balance at t = 0.1, ..., 1 in units of W(t):\n")
 print("| friction | CFL | transfers / W | leapfrog / W | balance / W(t) at t = 0.1, 0.2, ..., 1 | largest \\|balance\\| / W(1) |")
