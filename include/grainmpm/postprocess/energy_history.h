@@ -59,8 +59,10 @@ namespace grainmpm
    * elastic and gravity energy, and where it went, summed from the start
    * (StepStatistics of the accepted steps). The balance residual is what
    * none of these accounts for: the time integrator's own gain or loss
-   * (the contact pass on v^n, the theta step, the hypoelastic energy
-   * measure), and particles removed through open faces.
+   * (explicit: the oscillating rest of the leapfrog's exchange, all of it
+   * with USF and MUSL; implicit: the contact pass on v^n, the theta step,
+   * the hypoelastic energy measure), and particles removed through open
+   * faces.
    */
   struct EnergyLedger
   {
