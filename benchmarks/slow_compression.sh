@@ -55,6 +55,10 @@ def at(c, key, t):
     i = min(range(len(c["time"])), key=lambda i: abs(c["time"][i] - t))
     return c[key][i]
 
+def window(c, t):
+    """The platen work over (t - 0.1, t]."""
+    return at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)
+
 times = [0.1 * k for k in range(1, 11)]
 for friction in ["0", "0.3"]:
     runs = {s: columns(f"{s}_{friction}") for s in ["implicit", "usl", "usf"]}
@@ -75,15 +79,12 @@ for friction in ["0", "0.3"]:
     print("|---|" + "---|" * len(times))
     for s in ["implicit", "usl", "usf"]:
         c = runs[s]
-        forces = [(at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)) / (0.1 * speed)
-                  for t in times]
+        forces = [window(c, t) / (0.1 * speed) for t in times]
         print(f"| {s} | " + " | ".join(f"{f:.4f}" for f in forces) + " |")
 print("\nfrictionless: E(1) / W and the platen force windows over those of explicit USL, CFL 0.25:\n")
 print("| run | E(1) / W | W / W_USL | " + " | ".join(f"{t:.1f}" for t in times) + " |")
 print("|---|---|---|" + "---|" * len(times))
 usl = columns("usl_0")
-def window(c, t):
-    return at(c, "boundary_work", t) - at(c, "boundary_work", t - 0.1)
 for name, label in [("usl_0_half", "explicit USL, CFL 0.125"), ("usl_0_pic", "explicit USL, FLIP fraction 0.99"),
                     ("implicit_0", "implicit (blended mass)"), ("implicit_0_lumped", "implicit, lumped mass")]:
     c = columns(name)
