@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/transfer/shape_functions.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -88,19 +89,6 @@ namespace grainmpm
         if (masses[k] > 0.)
           velocities[k] -= shift;
       return shift.norm();
-    }
-
-    /**
-     * The position s (in cells along the normal, from the node) of a flat
-     * surface whose material fills the fraction @p phi of the node's
-     * support: phi = Phi(s), Phi the integral of the hat from -1 to s.
-     */
-    inline double
-    surface_position(double phi)
-    {
-      phi = std::min(1., std::max(0., phi));
-      return phi <= 0.5 ? -1. + std::sqrt(2. * phi) :
-                          1. - std::sqrt(2. * (1. - phi));
     }
 
 
@@ -266,10 +254,12 @@ namespace grainmpm
         double h_normal = 0.;
         for (unsigned int d = 0; d < dim; ++d)
           h_normal += (h[d] * normals[k][d]) * (h[d] * normals[k][d]);
+        // Where the surfaces of this field and of the others lie.
         const double fill = slot_fills[begin + k];
         const double gap =
           std::sqrt(h_normal) *
-          (surface_position(1. - (fill_sum - fill)) - surface_position(fill));
+          (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
+           HatKernel::inverse_integral(fill));
         if (gap > 0.)
           allowed[k] =
             (rigid_partner ? 1. :
@@ -287,11 +277,9 @@ namespace grainmpm
   {
     if (!uses_gaps())
       return 0.;
-    // The in-box half of the support along the wall normal: a flat surface
-    // filling the fraction phi of it lies 1 - sqrt(phi) cells from the wall.
-    const double gap = grid.cell_size()[face / 2] *
-                       (1. - std::sqrt(std::min(1., slot_fills[slot])));
-    return gap / gap_dt;
+    // The in-box half of the support along the wall normal.
+    return grid.cell_size()[face / 2] *
+           HatKernel::inverse_half_integral(slot_fills[slot]) / gap_dt;
   }
 
 
