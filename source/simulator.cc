@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_file.h>
 #include <grainmpm/particles/grain_list.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
@@ -96,8 +97,8 @@ namespace grainmpm
   {
     // Record the inputs before anything can fail: the input with its
     // included files expanded (it can be run again as it is), the values
-    // of every parameter, the generated grains. Rank 0 writes; an error
-    // stops every rank.
+    // of every parameter (as .prm and as .json), the generated grains.
+    // Rank 0 writes; an error stops every rank.
     const std::string &directory = parameters.output.directory;
     std::string        error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -134,10 +135,13 @@ namespace grainmpm
                                    "' in it (disk full, or no permission?).")
                         .what();
           };
-        write("original.prm",
+        write(original_file_name(input_file),
               [&](std::ostream &out) { out << expand_includes(input_file); });
         write("parameters.prm", [&](std::ostream &out) {
           prm.print_parameters(out, ParameterHandler::PRM);
+        });
+        write("parameters.json", [&](std::ostream &out) {
+          prm.print_parameters(out, ParameterHandler::JSON);
         });
         if (parameters.n_packed_grains > 0)
           write("packing.csv", [&](std::ostream &out) {
