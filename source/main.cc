@@ -2,10 +2,11 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 // grainmpm: multi-grain Material Point Method after Cummins & Brackbill.
-// Usage: grainmpm [--quiet] case.prm | --print-parameters [2|3] |
+// Usage: grainmpm [--quiet] case.prm | --print-parameters [2|3] [FORMAT] |
 //        --check-parameters case.prm | --version | --help
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_file.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
@@ -28,11 +29,15 @@ namespace
            "progress lines)\n"
         << "       grainmpm --check-parameters CASE.prm   parse and check "
            "only\n"
-        << "       grainmpm --print-parameters [2|3]      print every "
+        << "       grainmpm --print-parameters [2|3] [prm|json|xml]\n"
+        << "                                              print every "
            "parameter with its documentation\n"
         << "       grainmpm --version                     print the "
            "versions of grainmpm and deal.II\n"
-        << "       grainmpm --help\n";
+        << "       grainmpm --help\n"
+        << "CASE may be a .prm, .json or .xml file (the formats of "
+           "--print-parameters;\na run writes its parameters as "
+           "parameters.prm and parameters.json).\n";
   }
 
 
@@ -54,12 +59,12 @@ namespace
 
   template <int dim>
   void
-  print_parameters()
+  print_parameters(const ParameterHandler::OutputStyle style)
   {
     ParameterHandler prm;
     Parameters<dim>  parameters;
     parameters.declare(prm, {"example material"}, {"Grain 1"});
-    prm.print_parameters(std::cout, ParameterHandler::PRM);
+    prm.print_parameters(std::cout, style);
   }
 
 
@@ -132,15 +137,29 @@ main(int argc, char *argv[])
         }
       if (arguments[0] == "--print-parameters")
         {
-          if (arguments.size() > 2 ||
-              (arguments.size() == 2 && arguments[1] != "2" &&
-               arguments[1] != "3"))
-            return usage_error("--print-parameters takes the dimension, 2 "
-                               "or 3, or nothing (2)");
-          if (arguments.size() == 2 && arguments[1] == "3")
-            print_parameters<3>();
+          // [2|3] [prm|json|xml], each optional, in this order.
+          std::size_t next      = 1;
+          std::string dimension = "2", format = "prm";
+          if (next < arguments.size() &&
+              (arguments[next] == "2" || arguments[next] == "3"))
+            dimension = arguments[next++];
+          if (next < arguments.size() &&
+              (arguments[next] == "prm" || arguments[next] == "json" ||
+               arguments[next] == "xml"))
+            format = arguments[next++];
+          if (next != arguments.size())
+            return usage_error("--print-parameters takes the dimension (2 or "
+                               "3, default 2) and the format (prm, json or "
+                               "xml, default prm), not '" +
+                               arguments[next] + "'");
+          const ParameterHandler::OutputStyle style =
+            format == "json" ? ParameterHandler::JSON :
+            format == "xml"  ? ParameterHandler::XML :
+                               ParameterHandler::PRM;
+          if (dimension == "3")
+            print_parameters<3>(style);
           else
-            print_parameters<2>();
+            print_parameters<2>(style);
           return 0;
         }
       if (arguments[0] == "--check-parameters")

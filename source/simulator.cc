@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_file.h>
 #include <grainmpm/particles/grain_list.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
@@ -83,21 +84,41 @@ namespace grainmpm
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , progress(std::cout,
                !quiet && Utilities::MPI::this_mpi_process(communicator) == 0)
-    , timer(pcout,
-            parameters.output.test_mode ? TimerOutput::never :
-                                          TimerOutput::summary,
-            TimerOutput::wall_times)
     , grid(parameters.grid, communicator)
     , particle_handler(grid.get_triangulation(),
                        grid.get_mapping(),
                        MaterialPointLayout<dim>::n_properties)
     , schedule(parameters.output, parameters.checkpoint, communicator)
     , summary(implicit)
+    , timer(pcout,
+            parameters.output.test_mode ? TimerOutput::never :
+                                          TimerOutput::summary,
+            TimerOutput::wall_times)
   {
-    // Record the inputs before anything can fail: the input with its
-    // included files expanded (it can be run again as it is), the values
-    // of every parameter, the generated grains. Rank 0 writes; an error
-    // stops every rank.
+    try
+      {
+        record_inputs(prm, input_file);
+      }
+    catch (...)
+      {
+        timer.disable_output();
+        throw;
+      }
+    for (const auto &material : parameters.materials)
+      materials.emplace_back(create_constitutive_model<dim>(
+        material, parameters.physics.two_dimensional_model));
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::record_inputs(const ParameterHandler &prm,
+                                const std::string      &input_file) const
+  {
+    // The input with its included files expanded (it can be run again as
+    // it is), the values of every parameter (as .prm and as .json), the
+    // generated grains.
     const std::string &directory = parameters.output.directory;
     std::string        error;
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
@@ -134,10 +155,13 @@ namespace grainmpm
                                    "' in it (disk full, or no permission?).")
                         .what();
           };
-        write("original.prm",
+        write(original_file_name(input_file),
               [&](std::ostream &out) { out << expand_includes(input_file); });
         write("parameters.prm", [&](std::ostream &out) {
           prm.print_parameters(out, ParameterHandler::PRM);
+        });
+        write("parameters.json", [&](std::ostream &out) {
+          prm.print_parameters(out, ParameterHandler::JSON);
         });
         if (parameters.n_packed_grains > 0)
           write("packing.csv", [&](std::ostream &out) {
@@ -150,10 +174,6 @@ namespace grainmpm
           });
       }
     throw_on_all_ranks(error, communicator);
-
-    for (const auto &material : parameters.materials)
-      materials.emplace_back(create_constitutive_model<dim>(
-        material, parameters.physics.two_dimensional_model));
   }
 
 
@@ -518,23 +538,24 @@ namespace grainmpm
 
     // The progress line; the wall time and the estimate of the time to
     // the end (from the pace since the loop started) are not in test mode.
+    // Formatted in a stream of its own: the progress line's precision must
+    // not stay on std::cout, where the summary and messages follow.
     const EnergySummary<dim> &energies = summary.get_current_energies();
-    progress << "step " << std::setw(6) << step << "  t = " << std::scientific
-             << std::setprecision(4) << time
-             << "  dt = " << std::setprecision(3) << dt
-             << "  E_kin = " << std::setprecision(5) << energies.kinetic
-             << "  E_el = " << energies.elastic
-             << "  E_tot = " << energies.total() << std::defaultfloat;
+    std::ostringstream        line;
+    line << "step " << std::setw(6) << step << "  t = " << std::scientific
+         << std::setprecision(4) << time << "  dt = " << std::setprecision(3)
+         << dt << "  E_kin = " << std::setprecision(5) << energies.kinetic
+         << "  E_el = " << energies.elastic << "  E_tot = " << energies.total();
     if (!parameters.output.test_mode && time > start_time)
       {
         const double elapsed = wall_clock.wall_time();
         const double left    = elapsed *
                             (parameters.time_stepping.end_time - time) /
                             (time - start_time);
-        progress << std::fixed << std::setprecision(1) << "  wall " << elapsed
-                 << " s  to end ~" << left << " s" << std::defaultfloat;
+        line << std::fixed << std::setprecision(1) << "  wall " << elapsed
+             << " s  to end ~" << left << " s";
       }
-    progress << std::endl;
+    progress << line.str() << std::endl;
   }
 
 

@@ -82,6 +82,17 @@ namespace grainmpm
 
   private:
     /**
+     * Record the inputs in the output directory before anything can fail:
+     * original.prm (the input file @p input_file with its included files
+     * expanded; original.json or .xml for those formats), parameters.prm
+     * and parameters.json (every value of @p prm) and, for a random
+     * packing, packing.csv. Rank 0 writes; an error stops every rank.
+     */
+    void
+    record_inputs(const ParameterHandler &prm,
+                  const std::string      &input_file) const;
+
+    /**
      * Grains and material points (or those of the checkpoint the run
      * resumes from), the time integrator, the writers; the first output
      * of a new run. Sets where the time loop starts.
@@ -175,8 +186,7 @@ namespace grainmpm
     /** The header and the progress lines (not with --quiet). */
     ConditionalOStream progress;
     /** Wall clock at the start of the time loop, for the progress lines. */
-    Timer       wall_clock;
-    TimerOutput timer;
+    Timer wall_clock;
 
     BackgroundGrid<dim>                                  grid;
     Particles::ParticleHandler<dim>                      particle_handler;
@@ -194,6 +204,13 @@ namespace grainmpm
     std::unique_ptr<ReactionHistory<dim>>   reaction_history;
     std::unique_ptr<ContactHistory<dim>>    contact_history;
     RunSummary<dim>                         summary;
+    /**
+     * The timing table, printed when the run ends. Made after the members
+     * whose construction can fail, and silenced when anything fails before
+     * the time loop: an error found before the first step prints no empty
+     * table before its message.
+     */
+    TimerOutput timer;
 
     /** The steps after which output and a checkpoint were last written. */
     unsigned int last_output_step     = numbers::invalid_unsigned_int;

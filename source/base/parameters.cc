@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_file.h>
 #include <grainmpm/base/parameter_parsing.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/particles/grain_geometry.h>
@@ -11,8 +12,6 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace grainmpm
@@ -681,167 +680,6 @@ namespace grainmpm
             point_to_string(grid.lower_corner) + " to " +
             point_to_string(grid.upper_corner) +
             ": move it (Centre) or enlarge the grid (Background grid).");
-  }
-
-
-
-  // ---------------------------------------------------------- pre-passes
-
-  std::vector<std::string>
-  find_subsections(const std::string &filename, const std::string &parent)
-  {
-    std::ifstream in(filename);
-    if (!in)
-      throw InputError("",
-                       "cannot open the parameter file '" + filename + "'.");
-
-    std::vector<std::string> names;
-    std::vector<std::string> stack;
-    std::string              line;
-    while (std::getline(in, line))
-      {
-        line = strip_comment(line);
-        if (line.rfind("subsection ", 0) == 0)
-          {
-            const std::string name = Utilities::trim(line.substr(11));
-            if (stack.size() == 1 && stack[0] == parent &&
-                std::find(names.begin(), names.end(), name) == names.end())
-              names.push_back(name);
-            stack.push_back(name);
-          }
-        else if (line == "end" && !stack.empty())
-          stack.pop_back();
-        else if (line.rfind("include ", 0) == 0 && stack.empty())
-          for (const auto &name :
-               find_subsections(Utilities::trim(line.substr(8)), parent))
-            if (std::find(names.begin(), names.end(), name) == names.end())
-              names.push_back(name);
-      }
-    return names;
-  }
-
-
-
-  std::string
-  subsection_path_at_line(const std::string &filename, const unsigned int line)
-  {
-    std::ifstream            in(filename);
-    std::vector<std::string> stack;
-    std::string              text;
-    for (unsigned int number = 1; number < line && std::getline(in, text);
-         ++number)
-      {
-        text = strip_comment(text);
-        if (text.rfind("subsection ", 0) == 0)
-          stack.push_back(Utilities::trim(text.substr(11)));
-        else if (text == "end" && !stack.empty())
-          stack.pop_back();
-      }
-    std::string path;
-    for (const auto &name : stack)
-      path += (path.empty() ? "" : "/") + name;
-    return path;
-  }
-
-
-
-  namespace
-  {
-    /**
-     * Follow the include lines of @p filename (the files @p chain includes
-     * it through) and throw an InputError if a file includes itself.
-     */
-    void
-    check_includes(const std::string       &filename,
-                   std::vector<std::string> chain = {})
-    {
-      const std::string name =
-        std::filesystem::weakly_canonical(filename).string();
-      if (std::find(chain.begin(), chain.end(), name) != chain.end())
-        {
-          // File names without their directories: the chain reads well
-          // and does not depend on where the files are.
-          const auto file_name = [](const std::string &path) {
-            return "'" + std::filesystem::path(path).filename().string() + "'";
-          };
-          std::string through;
-          for (const auto &file : chain)
-            through += file_name(file) + " -> ";
-          throw InputError("",
-                           "the parameter file " + file_name(name) +
-                             " includes itself: " + through + file_name(name) +
-                             ". Remove the include line.");
-        }
-      std::ifstream in(filename);
-      {
-        const std::string from =
-          chain.empty() ?
-            "" :
-            " (included from '" +
-              std::filesystem::path(chain.back()).filename().string() + "')";
-        std::error_code code;
-        if (!std::filesystem::exists(filename, code))
-          throw InputError("",
-                           "the parameter file '" + filename +
-                             "' does not exist" + from + ".");
-        if (!std::filesystem::is_regular_file(filename, code))
-          throw InputError("",
-                           "'" + filename +
-                             "' is not a parameter file but a directory or "
-                             "a device" +
-                             from + ".");
-        if (!in)
-          throw InputError("",
-                           "the parameter file '" + filename +
-                             "' cannot be read" + from + ".");
-      }
-      chain.push_back(name);
-      std::string line;
-      while (std::getline(in, line))
-        {
-          line = Utilities::trim(strip_comment(line));
-          if (line.rfind("include ", 0) == 0 || line.rfind("INCLUDE ", 0) == 0)
-            check_includes(Utilities::trim(line.substr(8)), chain);
-        }
-    }
-  } // namespace
-
-
-
-  unsigned int
-  read_dimension(const std::string &filename)
-  {
-    check_includes(filename);
-    ParameterHandler prm;
-    prm.declare_entry("Dimension",
-                      "2",
-                      Patterns::Integer(2, 3),
-                      "The space dimension of the run, 2 or 3.");
-    prm.parse_input(filename, "", true, false);
-    return prm.get_integer("Dimension");
-  }
-
-
-
-  std::string
-  expand_includes(const std::string &filename)
-  {
-    std::ifstream in(filename);
-    std::string   text, line;
-    while (std::getline(in, line))
-      {
-        const std::string command = Utilities::trim(strip_comment(line));
-        if (command.rfind("include ", 0) == 0 ||
-            command.rfind("INCLUDE ", 0) == 0)
-          {
-            const std::string included = Utilities::trim(command.substr(8));
-            text += "# " + line + " (expanded below)\n" +
-                    expand_includes(included) + "# end of " + included + "\n";
-          }
-        else
-          text += line + '\n';
-      }
-    return text;
   }
 
 

@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/postprocess/checkpoint_files.h>
 #include <grainmpm/postprocess/checkpoint_manager.h>
 
 #include <algorithm>
@@ -12,132 +13,6 @@
 
 namespace grainmpm
 {
-  namespace
-  {
-    const std::string manifest_header = "grainmpm checkpoint manifest 1";
-
-
-
-    /** The size of the file @p name and its 64-bit FNV-1a checksum (hex). */
-    std::pair<std::uintmax_t, std::string>
-    size_and_checksum(const std::string &name)
-    {
-      std::ifstream     in(name, std::ios::binary);
-      std::uint64_t     hash = 14695981039346656037ULL;
-      std::uintmax_t    size = 0;
-      std::vector<char> buffer(1 << 20);
-      while (in)
-        {
-          in.read(buffer.data(), buffer.size());
-          const std::streamsize n = in.gcount();
-          for (std::streamsize i = 0; i < n; ++i)
-            {
-              hash ^= static_cast<unsigned char>(buffer[i]);
-              hash *= 1099511628211ULL;
-            }
-          size += n;
-        }
-      std::ostringstream hex;
-      hex << std::hex << std::setw(16) << std::setfill('0') << hash;
-      return {size, hex.str()};
-    }
-
-
-
-    /**
-     * Check the files of the checkpoint @p checkpoint against its manifest
-     * and read the fingerprint into @p fingerprint. Returns what is wrong,
-     * or an empty string.
-     */
-    std::string
-    check_manifest(const std::string &checkpoint, std::string &fingerprint)
-    {
-      std::ifstream in(checkpoint + "/manifest");
-      std::string   line;
-      if (!in)
-        return "it has no manifest, so its files cannot be checked (it was "
-               "written by an older grainmpm, or the manifest was deleted).";
-      if (!std::getline(in, line) || line != manifest_header)
-        return "its manifest does not begin with '" + manifest_header +
-               "': it is damaged or not a grainmpm checkpoint.";
-      while (std::getline(in, line) && line != "fingerprint")
-        {
-          std::istringstream words(line);
-          std::string        keyword, name, checksum;
-          std::uintmax_t     size = 0;
-          if (!(words >> keyword >> name >> size >> checksum) ||
-              keyword != "file")
-            return "its manifest is damaged (the line '" + line +
-                   "' is not 'file NAME SIZE CHECKSUM').";
-          const std::string path = checkpoint + "/" + name;
-          if (!std::filesystem::is_regular_file(path))
-            return "its file '" + name + "' is missing.";
-          const auto [actual_size, actual_checksum] = size_and_checksum(path);
-          if (actual_size != size)
-            return "its file '" + name + "' has " +
-                   std::to_string(actual_size) + " bytes where " +
-                   std::to_string(size) +
-                   " were written: it was truncated or overwritten.";
-          if (actual_checksum != checksum)
-            return "its file '" + name +
-                   "' differs from what was written (checksum " +
-                   actual_checksum + ", written " + checksum +
-                   "): it is corrupted.";
-        }
-      fingerprint.clear();
-      bool complete = false;
-      while (std::getline(in, line))
-        {
-          if (line == "end")
-            {
-              complete = true;
-              break;
-            }
-          fingerprint += line + '\n';
-        }
-      if (!complete)
-        return "its manifest is truncated (no 'end' line).";
-      return "";
-    }
-
-
-
-    /**
-     * The lines in which the fingerprints @p written (of the checkpoint) and
-     * @p current (of this run) differ, at most three.
-     */
-    std::string
-    fingerprint_differences(const std::string &written,
-                            const std::string &current)
-    {
-      std::istringstream a(written), b(current);
-      std::string        line_a, line_b, differences;
-      unsigned int       n = 0;
-      for (;;)
-        {
-          const bool more_a = static_cast<bool>(std::getline(a, line_a));
-          const bool more_b = static_cast<bool>(std::getline(b, line_b));
-          if (!more_a && !more_b)
-            break;
-          if (more_a && more_b && line_a == line_b)
-            continue;
-          if (n++ == 3)
-            {
-              differences += "; and more";
-              break;
-            }
-          differences += std::string(n > 1 ? "; " : "") +
-                         "the checkpoint has '" +
-                         (more_a ? line_a : std::string("(nothing)")) +
-                         "' where this run has '" +
-                         (more_b ? line_b : std::string("(nothing)")) + "'";
-        }
-      return differences;
-    }
-  } // namespace
-
-
-
   template <int dim>
   CheckpointManager<dim>::CheckpointManager(
     const CheckpointParameters &parameters,
@@ -162,7 +37,12 @@ namespace grainmpm
               error = "there is no checkpoint (files state, manifest) in "
                       "this directory.";
             else
-              error = check_manifest(resume, resume_fingerprint);
+              error =
+                CheckpointFiles::check_manifest(resume, resume_fingerprint);
+            // The files can match a manifest written after a write that
+            // failed unnoticed: check them against each other as well.
+            if (error.empty())
+              error = CheckpointFiles::check_grid_files(resume, 0);
             if (!error.empty())
               error = InputError("Checkpoint/Resume from = " + resume,
                                  "this checkpoint cannot be used: " + error +
@@ -259,7 +139,8 @@ namespace grainmpm
         InputError("Checkpoint/Resume from = " + parameters.resume_from,
                    "this checkpoint was written by a run with other "
                    "parameters: " +
-                     fingerprint_differences(resume_fingerprint, fingerprint) +
+                     CheckpointFiles::fingerprint_differences(
+                       resume_fingerprint, fingerprint) +
                      ". Resume it with the parameter file of the run that "
                      "wrote it (a copy is original.prm in that run's output "
                      "directory), changing only times, output and solver "
@@ -300,16 +181,17 @@ namespace grainmpm
          << step;
     const std::string final_name     = name.str();
     const std::string temporary_name = final_name + ".tmp";
-    const bool root   = Utilities::MPI::this_mpi_process(communicator) == 0;
-    const auto failed = [&](const std::string &what) -> std::string {
-      return InputError("Output/Output directory = " + directory,
-                        "writing the checkpoint " + final_name + " failed: " +
-                          what + ". The older checkpoints are intact.")
-        .what();
-    };
-    // A failure on any rank stops every rank, without the partial files.
+    const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    // A failure on any rank stops every rank, without the partial files;
+    // the older checkpoints stay as they are.
     std::string error;
     const auto  stop_if_failed = [&]() {
+      if (!error.empty())
+        error = InputError("Output/Output directory = " + directory,
+                           "writing the checkpoint " + final_name +
+                             " failed: " + error +
+                             " The older checkpoints are intact.")
+                  .what();
       if (Utilities::MPI::max(error.empty() ? 0U : 1U, communicator) > 0 &&
           root)
         {
@@ -319,37 +201,62 @@ namespace grainmpm
       throw_on_all_ranks(error, communicator);
     };
 
+    if (root)
+      error = prepare_directory(temporary_name, particle_handler);
+    stop_if_failed();
+    error = write_grid(temporary_name, grid, particle_handler);
+    stop_if_failed();
+    if (root)
+      error =
+        write_state_and_manifest(temporary_name, fingerprint, write_state);
+    if (root && error.empty())
+      error = replace_and_prune(temporary_name, final_name);
+    stop_if_failed();
+  }
+
+
+
+  template <int dim>
+  std::string
+  CheckpointManager<dim>::prepare_directory(
+    const std::string                     &temporary_name,
+    const Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    std::error_code code;
+    std::filesystem::remove_all(temporary_name, code);
+    std::filesystem::create_directories(temporary_name, code);
+    if (code)
+      return "cannot create the directory " + temporary_name + " (" +
+             code.message() + ").";
     // Enough room for it? The estimate is the size of the last checkpoint,
     // or that of the material points' data for the first one.
-    if (root)
-      {
-        std::error_code code;
-        std::filesystem::remove_all(temporary_name, code);
-        std::filesystem::create_directories(temporary_name, code);
-        if (code)
-          error = failed("cannot create the directory " + temporary_name +
-                         " (" + code.message() + ")");
-        else
-          {
-            const std::uintmax_t needed = std::max<std::uintmax_t>(
-              last_size,
-              particle_handler.n_global_particles() *
-                (particle_handler.get_property_pool().n_properties_per_slot() +
-                 2 * dim + 2) *
-                sizeof(double));
-            const std::filesystem::space_info space =
-              std::filesystem::space(temporary_name, code);
-            if (!code && space.available < needed + needed / 10)
-              error = failed("the file system has " +
-                             std::to_string(space.available / 1024) +
-                             " KiB free and the checkpoint needs about " +
-                             std::to_string(needed / 1024) +
-                             " KiB (free some space, or raise Checkpoint/"
-                             "Steps between checkpoints)");
-          }
-      }
-    stop_if_failed();
+    const std::uintmax_t needed = std::max<std::uintmax_t>(
+      last_size,
+      particle_handler.n_global_particles() *
+        (particle_handler.get_property_pool().n_properties_per_slot() +
+         2 * dim + 2) *
+        sizeof(double));
+    const std::filesystem::space_info space =
+      std::filesystem::space(temporary_name, code);
+    if (!code && space.available < needed + needed / 10)
+      return "the file system has " + std::to_string(space.available / 1024) +
+             " KiB free and the checkpoint needs about " +
+             std::to_string(needed / 1024) +
+             " KiB (free some space, or raise Checkpoint/Steps between "
+             "checkpoints).";
+    return "";
+  }
 
+
+
+  template <int dim>
+  std::string
+  CheckpointManager<dim>::write_grid(
+    const std::string               &temporary_name,
+    const BackgroundGrid<dim>       &grid,
+    Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    std::string error;
     try
       {
         particle_handler.prepare_for_serialization();
@@ -357,77 +264,75 @@ namespace grainmpm
       }
     catch (const std::exception &exception)
       {
-        error = failed(std::string("the cells and material points could not "
-                                   "be written (") +
-                       exception.what() + ")");
+        error = std::string("the cells and material points could not be "
+                            "written (") +
+                exception.what() + ").";
       }
-    stop_if_failed();
-    if (root)
+    // deal.II does not notice every failed write: check what is on disk
+    // against what was meant to be written.
+    const std::uint64_t n_cells =
+      grid.get_triangulation().n_global_active_cells();
+    if (error.empty() && Utilities::MPI::this_mpi_process(communicator) == 0)
+      error = CheckpointFiles::check_grid_files(temporary_name, n_cells);
+    return error;
+  }
+
+
+
+  template <int dim>
+  std::string
+  CheckpointManager<dim>::write_state_and_manifest(
+    const std::string &temporary_name,
+    const std::string &fingerprint,
+    const std::function<void(boost::archive::binary_oarchive &)> &write_state)
+  {
+    std::ostringstream state;
+    try
       {
-        std::ofstream out(temporary_name + "/state", std::ios::binary);
-        {
-          boost::archive::binary_oarchive archive(out);
-          write_state(archive);
-        }
-        out.close();
-        if (!out)
-          error = failed("the file state could not be written completely "
-                         "(is the disk full?)");
+        boost::archive::binary_oarchive archive(state);
+        write_state(archive);
       }
-    if (root && error.empty())
+    catch (const std::exception &exception)
       {
-        // The manifest last: the files, their sizes and checksums, and the
-        // fingerprint of the run.
-        std::vector<std::string> files;
-        for (const auto &entry :
-             std::filesystem::directory_iterator(temporary_name))
-          if (entry.is_regular_file())
-            files.push_back(entry.path().filename().string());
-        std::sort(files.begin(), files.end());
-        std::ofstream out(temporary_name + "/manifest");
-        out << manifest_header << '\n';
-        std::uintmax_t size = 0;
-        for (const std::string &file : files)
-          {
-            const auto [file_size, checksum] =
-              size_and_checksum(temporary_name + "/" + file);
-            out << "file " << file << ' ' << file_size << ' ' << checksum
-                << '\n';
-            size += file_size;
-          }
-        out << "fingerprint\n" << fingerprint << "end\n";
-        out.close();
-        if (!out)
-          error = failed("the file manifest could not be written completely "
-                         "(is the disk full?)");
-        last_size = size;
+        return std::string("the state of the run could not be serialized (") +
+               exception.what() + ").";
       }
-    if (root)
+    if (const std::string error =
+          CheckpointFiles::write_verified(temporary_name + "/state",
+                                          state.str());
+        !error.empty())
+      return error;
+    // The manifest last: the files, their sizes and checksums, and the
+    // fingerprint of the run.
+    const std::string manifest =
+      CheckpointFiles::make_manifest(temporary_name, fingerprint, last_size);
+    return CheckpointFiles::write_verified(temporary_name + "/manifest",
+                                           manifest);
+  }
+
+
+
+  template <int dim>
+  std::string
+  CheckpointManager<dim>::replace_and_prune(const std::string &temporary_name,
+                                            const std::string &final_name)
+  {
+    std::error_code code;
+    std::filesystem::remove_all(final_name, code);
+    std::filesystem::rename(temporary_name, final_name, code);
+    if (code)
+      return "renaming " + temporary_name + " failed (" + code.message() + ").";
+    checkpoints.erase(std::remove(checkpoints.begin(),
+                                  checkpoints.end(),
+                                  final_name),
+                      checkpoints.end());
+    checkpoints.push_back(final_name);
+    while (checkpoints.size() > parameters.n_kept)
       {
-        std::error_code code;
-        if (error.empty())
-          {
-            std::filesystem::remove_all(final_name, code);
-            std::filesystem::rename(temporary_name, final_name, code);
-            if (code)
-              error = failed("renaming " + temporary_name + " failed (" +
-                             code.message() + ")");
-          }
-        if (error.empty())
-          {
-            checkpoints.erase(std::remove(checkpoints.begin(),
-                                          checkpoints.end(),
-                                          final_name),
-                              checkpoints.end());
-            checkpoints.push_back(final_name);
-            while (checkpoints.size() > parameters.n_kept)
-              {
-                std::filesystem::remove_all(checkpoints.front(), code);
-                checkpoints.erase(checkpoints.begin());
-              }
-          }
+        std::filesystem::remove_all(checkpoints.front(), code);
+        checkpoints.erase(checkpoints.begin());
       }
-    stop_if_failed();
+    return "";
   }
 
 

@@ -5,13 +5,16 @@
 // before reading any of it. The shipped implicit two disks to t = 1 (11
 // steps) with a checkpoint every 4 steps leave checkpoint-000008. Copies of
 // it are damaged (a flipped byte in the material points, the state cut to
-// half, a data file or the manifest deleted), and it is resumed with other
-// parameters (another grid, more material points per cell): each resume is
-// refused naming Checkpoint/Resume from and what is wrong (these used to
-// resume with nonsense, segfault, or give raw library text). The intact
-// checkpoint resumes to the end. Sizes and checksums in the messages are
-// replaced by N and X (they depend on the number of ranks).
+// half, a data file or the manifest deleted; the material points' data or
+// the cells' data cut short with a manifest that agrees, as a write that
+// failed unnoticed left them), and it is resumed with other parameters (another
+// grid, more material points per cell): each resume is refused naming
+// Checkpoint/Resume from and what is wrong (these used to resume with nonsense,
+// segfault, or give raw library text). The intact checkpoint resumes to the
+// end. Sizes and checksums in the messages are replaced by N and X (they depend
+// on the number of ranks).
 
+#include <grainmpm/postprocess/checkpoint_files.h>
 #include <grainmpm/simulator.h>
 
 #include <deal.II/base/mpi.h>
@@ -138,6 +141,31 @@ main(int argc, char **argv)
                       [](const std::string &target) {
                         std::filesystem::remove(target + "/manifest");
                       }))
+          << std::endl;
+
+  // Cut @p file to @p size bytes and write a manifest that agrees.
+  const auto cut_with_manifest = [](const std::string   &file,
+                                    const std::uintmax_t size) {
+    return [file, size](const std::string &target) {
+      std::string fingerprint;
+      CheckpointFiles::check_manifest(target, fingerprint);
+      std::filesystem::resize_file(target + "/" + file, size);
+      std::uintmax_t total = 0;
+      std::ofstream(target + "/manifest")
+        << CheckpointFiles::make_manifest(target, fingerprint, total);
+    };
+  };
+  deallog << "data file written empty: "
+          << run("empty_data",
+                 copy("empty_data", cut_with_manifest("grid_variable.data", 0)))
+          << std::endl;
+  deallog << "cells' data one byte short: "
+          << run("short_cells",
+                 copy("short_cells",
+                      cut_with_manifest("grid_fixed.data",
+                                        std::filesystem::file_size(
+                                          checkpoint + "/grid_fixed.data") -
+                                          1)))
           << std::endl;
 
   const std::string resume =

@@ -45,8 +45,13 @@ done
 
 # One virtual display for all ParaView calls (several xvfb-run -a in a row
 # can race for the same display number); Xvfb picks a free one itself.
-Xvfb -displayfd 3 -screen 0 1600x1200x24 -nolisten tcp -ac 3> display.txt \
-  2> xvfb.log &
+# -noreset: by default an X server resets itself whenever its last client
+# disconnects, and a pvbatch that connects while the reset is under way
+# gets no display or no GLX window (vtkXOpenGLRenderWindow aborts with "bad
+# X server connection" or in CreateAWindow). Each pvbatch below is the only
+# client, so without -noreset every one of them starts right after a reset.
+Xvfb -displayfd 3 -screen 0 1600x1200x24 -nolisten tcp -ac -noreset \
+  3> display.txt 2> xvfb.log &
 xvfb_pid=$!
 trap 'kill $xvfb_pid 2> /dev/null; wait $xvfb_pid 2> /dev/null' EXIT
 for _ in $(seq 100); do
@@ -60,22 +65,9 @@ if ! [ -s display.txt ]; then
 fi
 export DISPLAY=":$(head -1 display.txt)"
 
-# pv SCRIPT ARGS: pvbatch, tried again (up to three times) if it could not
-# connect to the display or open its window on it (an abort in
-# vtkXOpenGLRenderWindow), which happens now and then under load.
+# pv SCRIPT ARGS: pvbatch on the virtual display.
 pv() {
-  local attempt
-  for attempt in 1 2 3; do
-    if pvbatch "$@" > pv.log 2>&1; then
-      cat pv.log
-      return 0
-    fi
-    grep -q -e "bad X server connection" -e "vtkXOpenGLRenderWindow" pv.log ||
-      break
-    sleep 1
-  done
-  cat pv.log
-  return 1
+  pvbatch "$@"
 }
 
 for scheme in explicit implicit; do

@@ -498,37 +498,6 @@ namespace grainmpm
     void
     check_grain(GrainParameters<dim> &grain) const;
   };
-
-  /**
-   * The names of the subsections nested directly in subsection @p parent of
-   * the parameter file @p filename (following `include` lines). Used to
-   * declare "any number" of materials and grains before parsing.
-   */
-  std::vector<std::string>
-  find_subsections(const std::string &filename, const std::string &parent);
-
-  /**
-   * The subsection path ("Materials/elastic") in force at line @p line of
-   * the parameter file @p filename (not following `include`s, as line
-   * numbers count within one file). Empty at the top level. Used to name the
-   * entry of a pattern error, which deal.II reports by line only.
-   */
-  std::string
-  subsection_path_at_line(const std::string &filename, const unsigned int line);
-
-  /**
-   * Read only the entry "Dimension" of @p filename.
-   */
-  unsigned int
-  read_dimension(const std::string &filename);
-
-  /**
-   * The text of the parameter file @p filename with each `include` line
-   * replaced by the text of the file it names (recursively), between
-   * comment lines that name it: a copy that runs from anywhere.
-   */
-  std::string
-  expand_includes(const std::string &filename);
 } // namespace grainmpm
 
 #endif

@@ -30,13 +30,18 @@ namespace grainmpm
    * newest `Number of checkpoints kept` are kept, including those of the
    * run a resumed run continues.
    *
+   * Every file is checked against what was meant to be written before the
+   * checkpoint counts as complete (deal.II's files against each other, see
+   * CheckpointFiles::check_grid_files(); the state and the manifest
+   * against their bytes), so a write that failed unnoticed (a full disk)
+   * stops the run instead of leaving a checkpoint that cannot be resumed.
    * The last file written, `manifest`, lists every file of the checkpoint
    * with its size and checksum (64-bit FNV-1a) and a fingerprint of the run
    * (dimension, grid, materials, grains and their material points). A run
    * resumes only from a checkpoint whose files match their manifest and
-   * whose fingerprint is its own: a truncated or corrupted checkpoint, or
-   * one of another parameter file, is refused with a message that says
-   * what differs.
+   * each other, and whose fingerprint is its own: a truncated, corrupted or
+   * incomplete checkpoint, or one of another parameter file, is refused
+   * with a message that says what differs.
    */
   template <int dim>
   class CheckpointManager
@@ -97,6 +102,49 @@ namespace grainmpm
             &write_state);
 
   private:
+    /**
+     * Make the empty directory @p temporary_name and check that the file
+     * system has room for the checkpoint. Returns what failed, or an empty
+     * string (rank 0).
+     */
+    std::string
+    prepare_directory(
+      const std::string                     &temporary_name,
+      const Particles::ParticleHandler<dim> &particle_handler) const;
+
+    /**
+     * Save the cells of @p grid with the material points of
+     * @p particle_handler into @p temporary_name, and check on rank 0 that
+     * the files hold what was meant to be written. Returns what failed, or
+     * an empty string. Collective.
+     */
+    std::string
+    write_grid(const std::string               &temporary_name,
+               const BackgroundGrid<dim>       &grid,
+               Particles::ParticleHandler<dim> &particle_handler) const;
+
+    /**
+     * Write the state (@p write_state) and then the manifest with
+     * @p fingerprint into @p temporary_name, each checked against what was
+     * meant to be written. Returns what failed, or an empty string (rank
+     * 0).
+     */
+    std::string
+    write_state_and_manifest(
+      const std::string &temporary_name,
+      const std::string &fingerprint,
+      const std::function<void(boost::archive::binary_oarchive &)>
+        &write_state);
+
+    /**
+     * Rename the complete checkpoint @p temporary_name to @p final_name and
+     * delete the oldest ones beyond `Number of checkpoints kept` (rank 0).
+     * Returns what failed, or an empty string.
+     */
+    std::string
+    replace_and_prune(const std::string &temporary_name,
+                      const std::string &final_name);
+
     const CheckpointParameters &parameters;
     const std::string           directory;
     const MPI_Comm              communicator;
