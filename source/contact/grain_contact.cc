@@ -2,7 +2,6 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/contact/grain_contact.h>
-#include <grainmpm/transfer/shape_functions.h>
 
 #include <deal.II/lac/vector.h>
 
@@ -23,6 +22,7 @@ namespace grainmpm
     , has_rigid_fields(std::find(field_is_rigid.begin(),
                                  field_is_rigid.end(),
                                  true) != field_is_rigid.end())
+    , gaps(grid, parameters.gap_check)
   {}
 
 
@@ -52,88 +52,6 @@ namespace grainmpm
               set_slot_vector<dim>(direction / length, normals, s);
           }
       }
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::compute_gaps(const GrainFieldLayout<dim> &layout,
-                                  const VectorType            &volumes,
-                                  const double                 dt)
-  {
-    // The support of a node, int S_i dx = prod_d h_d, halved for every box
-    // face the node lies on.
-    double support = 1.;
-    for (unsigned int d = 0; d < dim; ++d)
-      support *= grid.cell_size()[d];
-    gap_dt = dt;
-    slot_fills.resize(layout.n_slots());
-    for (unsigned int s = 0; s < layout.n_slots(); ++s)
-      {
-        const unsigned int faces = grid.node_faces(layout.node(s));
-        slot_fills[s]            = volumes.local_element(s) *
-                        (1U << __builtin_popcount(faces)) / support;
-      }
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::node_allowed_approach(const unsigned int    begin,
-                                           const unsigned int    n,
-                                           const double         *masses,
-                                           const bool           *rigid,
-                                           const Tensor<1, dim> *normals,
-                                           double               *allowed) const
-  {
-    const Tensor<1, dim> &h               = grid.cell_size();
-    double                deformable_mass = 0., fill_sum = 0.;
-    bool                  rigid_partner = false;
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        fill_sum += slot_fills[begin + k];
-        if (rigid[k])
-          rigid_partner = true;
-        else
-          deformable_mass += masses[k];
-      }
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        allowed[k] = 0.;
-        if (rigid[k] || normals[k].norm_square() == 0. ||
-            !(deformable_mass > 0.))
-          continue;
-        double h_normal = 0.;
-        for (unsigned int d = 0; d < dim; ++d)
-          h_normal += (h[d] * normals[k][d]) * (h[d] * normals[k][d]);
-        // Where the surfaces of this field and of the others lie.
-        const double fill = slot_fills[begin + k];
-        const double gap =
-          std::sqrt(h_normal) *
-          (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
-           HatKernel::inverse_integral(fill));
-        if (gap > 0.)
-          allowed[k] =
-            (rigid_partner ? 1. :
-                             (deformable_mass - masses[k]) / deformable_mass) *
-            gap / gap_dt;
-      }
-  }
-
-
-
-  template <int dim>
-  double
-  GrainContact<dim>::wall_allowed_approach(const unsigned int slot,
-                                           const unsigned int face) const
-  {
-    if (!uses_gaps())
-      return 0.;
-    // The in-box half of the support along the wall normal.
-    return grid.cell_size()[face / 2] *
-           HatKernel::inverse_half_integral(slot_fills[slot]) / gap_dt;
   }
 
 
@@ -196,19 +114,14 @@ namespace grainmpm
         node_states.resize(n);
         node_slips.resize(n);
         node_allowed.assign(n, 0.);
+        ContactNode<dim> view = fields.view();
         if (uses_gaps())
-          node_allowed_approach(fields.begin,
-                                n,
-                                fields.masses.data(),
-                                fields.rigid.get(),
-                                fields.normals.data(),
-                                node_allowed.data());
+          gaps.node_allowed_approach(fields.begin, view, node_allowed.data());
+        view.allowed = node_allowed.data();
         if (impulses != nullptr)
           before = fields.velocities;
-        Tensor<1, dim>   reference;
-        ContactNode<dim> view = fields.view();
-        view.allowed          = node_allowed.data();
-        view.reference        = &reference;
+        Tensor<1, dim> reference;
+        view.reference = &reference;
         if (status != nullptr)
           {
             view.states          = node_states.data();
@@ -271,11 +184,11 @@ namespace grainmpm
               if (faces & (1U << face))
                 {
                   const Tensor<1, dim> before = velocity;
-                  ContactLaw<dim>::apply_wall(grid.boundary_condition(face),
-                                              ContactLaw<dim>::face_normal(
-                                                face),
-                                              velocity,
-                                              wall_allowed_approach(s, face));
+                  ContactLaw<dim>::apply_wall(
+                    grid.boundary_condition(face),
+                    ContactLaw<dim>::face_normal(face),
+                    velocity,
+                    gaps.wall_allowed_approach(s, face));
                   if (impulses != nullptr)
                     impulses->walls[face] += impulses->scale *
                                              masses->local_element(s) *
@@ -372,7 +285,7 @@ namespace grainmpm
         status.wall_allowed[w] =
           condition.type == BoundaryType::no_slip ?
             0. :
-            wall_allowed_approach(s, status.wall_faces[w]);
+            gaps.wall_allowed_approach(s, status.wall_faces[w]);
         status.wall_state[w] =
           ContactLaw<dim>::classify_wall(condition,
                                          normal,

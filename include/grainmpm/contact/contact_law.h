@@ -169,7 +169,7 @@ namespace grainmpm
    * pass decides again, so no field is left approaching; with frozen
    * states (implicit), each pass applies the same states, so every
    * constrained field satisfies its constraint. With an allowed approach
-   * a_g (the gap check), only D - a_g is removed.
+   * a_g (the gap check, GapEstimator), only D - a_g is removed.
    */
   template <int dim>
   class ContactLaw

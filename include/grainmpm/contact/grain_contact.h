@@ -7,6 +7,7 @@
 #include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/contact/contact_law.h>
+#include <grainmpm/contact/gap_estimator.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/transfer/grain_field_layout.h>
@@ -110,20 +111,8 @@ namespace grainmpm
    * g_g = sum_p m_p grad S_ip, so that two fields get exactly antiparallel
    * normals.
    *
-   * With `Contact/Gap check`, field g may approach its partner by the gap
-   * between their surfaces in one step: the approach D is compared with
-   * the allowed approach speed a_g = (m_rest / m) gap / dt (a_g = gap / dt
-   * with a rigid partner or a wall; m_rest the mass of the node's other
-   * deformable fields, m of all), and only D - a_g is removed (the
-   * friction bound is mu (D - a_g)). The shares m_rest / m make the two
-   * corrections of a two-field node equal and opposite, so momentum stays
-   * exact. The gap comes from the fill fractions phi_g = sum_p V_p S_ip /
-   * V_i of the node's support V_i (cut at the box faces): a flat surface
-   * filling phi of the support lies at s = Phi^{-1}(phi) cells along the
-   * normal (Phi the integral of the hat), so gap = h_n (Phi^{-1}(1 -
-   * phi_rest) - Phi^{-1}(phi_g)), h_n the cell size along the normal; a
-   * wall gives gap = h (1 - sqrt(phi_g)). Two flat blocks in contact have
-   * phi_a + phi_b = 1, gap 0.
+   * With `Contact/Gap check`, a field may approach its partner by the gap
+   * between their surfaces in one step (GapEstimator).
    */
   template <int dim>
   class GrainContact
@@ -175,18 +164,21 @@ namespace grainmpm
     bool
     uses_gaps() const
     {
-      return parameters.gap_check;
+      return gaps.enabled();
     }
 
     /**
      * The fill fractions of the owned slots of @p layout from the slot
-     * volumes @p volumes (sum_p V_p S_ip), for a step of length @p dt: the
-     * data of the gap check until the next call.
+     * volumes @p volumes, for a step of length @p dt: the data of the gap
+     * check until the next call (GapEstimator::compute()).
      */
     void
     compute_gaps(const GrainFieldLayout<dim> &layout,
                  const VectorType            &volumes,
-                 const double                 dt);
+                 const double                 dt)
+    {
+      gaps.compute(layout, volumes, dt);
+    }
 
     /** Set the slots of rigid fields to their velocity at @p time. */
     void
@@ -307,24 +299,6 @@ namespace grainmpm
                     const Tensor<1, dim>        *after,
                     ConstraintImpulses<dim>     &impulses) const;
 
-    /**
-     * The approach speeds the gaps allow the @p n fields of a contact node
-     * (slots @p begin.. with @p masses, @p rigid and @p normals) into
-     * @p allowed.
-     */
-    void
-    node_allowed_approach(const unsigned int    begin,
-                          const unsigned int    n,
-                          const double         *masses,
-                          const bool           *rigid,
-                          const Tensor<1, dim> *normals,
-                          double               *allowed) const;
-
-    /** The approach speed the gap allows slot @p slot at box face @p face. */
-    double
-    wall_allowed_approach(const unsigned int slot,
-                          const unsigned int face) const;
-
     /** The friction coefficient of the contact model (0 without). */
     double
     friction_coefficient() const
@@ -340,9 +314,8 @@ namespace grainmpm
     const std::vector<bool>           &field_is_rigid;
     const bool                         has_rigid_fields;
 
-    /** Gap check: fill fraction per owned slot, and the step length. */
-    std::vector<double> slot_fills;
-    double              gap_dt = 0.;
+    /** The gap check. */
+    GapEstimator<dim> gaps;
   };
 } // namespace grainmpm
 
