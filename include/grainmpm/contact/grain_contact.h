@@ -7,6 +7,7 @@
 #include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/contact/contact_law.h>
+#include <grainmpm/contact/contact_node_fields.h>
 #include <grainmpm/contact/gap_estimator.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
