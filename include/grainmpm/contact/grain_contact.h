@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/contact/constraint_impulses.h>
 #include <grainmpm/contact/contact_law.h>
 #include <grainmpm/contact/contact_node_fields.h>
 #include <grainmpm/contact/gap_estimator.h>
@@ -48,52 +49,6 @@ namespace grainmpm
     bool any_active = false;
     /** Whether the states were decided (by freeze) since reinit_status. */
     bool decided = false;
-  };
-
-
-
-  /**
-   * The impulses that the constraints of one step gave the deformable
-   * grains, recorded by GrainContact::apply_contact(), apply_walls() and
-   * apply_frozen() when they are given one, at the nodes this rank owns:
-   * per box face, and per contact node and pair of grains. The impulse on
-   * a slot is its mass times the change the constraint made to its
-   * velocity, times #scale.
-   */
-  template <int dim>
-  struct ConstraintImpulses
-  {
-    /** One pair of grains at one contact node. */
-    struct Pair
-    {
-      /** The two grains, grain_a < grain_b. */
-      unsigned int grain_a = 0;
-      unsigned int grain_b = 0;
-      /** The impulse on grain_b from grain_a. */
-      Tensor<1, dim> impulse;
-      /** The unit contact normal at the node, out of grain_a. */
-      Tensor<1, dim> normal;
-      /** Where: the node. */
-      Point<dim> position;
-    };
-
-    /**
-     * From velocity changes to impulses on the end velocity: 1, or
-     * 1 / theta where the constraints act on v^theta.
-     */
-    double scale = 1.;
-    /** The impulse each box face (x-, x+, y-, ...) gave the grains. */
-    std::array<Tensor<1, dim>, 2 * dim> walls;
-    /** Contact between grains, rigid grains included. */
-    std::vector<Pair> pairs;
-
-    /** Forget everything recorded (#scale stays). */
-    void
-    clear()
-    {
-      walls.fill(Tensor<1, dim>());
-      pairs.clear();
-    }
   };
 
 
@@ -267,39 +222,21 @@ namespace grainmpm
 
     /**
      * The work of the constraints that changed @p before into @p after
-     * (dim per slot) on the velocities @p rate, done on the deformable
-     * slots: returns {friction work, boundary work}. The boundary work is
-     * what rigid partners put in (the reaction on the deformable slots of
-     * a node times the rigid slot's velocity; walls are at rest), the
-     * friction work what the constraints take out beyond it.
+     * on the velocities @p rate: {friction work, boundary work}
+     * (constraint_work() with the rigid fields of the contact).
      */
     std::pair<double, double>
     constraint_work(const GrainFieldLayout<dim> &layout,
                     const VectorType            &masses,
                     const VectorType            &before,
                     const VectorType            &after,
-                    const VectorType            &rate) const;
+                    const VectorType            &rate) const
+    {
+      return grainmpm::constraint_work(
+        layout, field_is_rigid, masses, before, after, rate);
+    }
 
   private:
-    /**
-     * Add the contact impulses of the fields @p fields_begin.. of @p node
-     * (@p n of them, with @p masses and @p normals, rigid as @p rigid)
-     * that changed @p before into @p after to @p impulses, one entry per
-     * pair of grains: a deformable grain against the node's rigid grain
-     * if it has one, else each pair of deformable grains, whose impulse is
-     * shared by the partners' masses when three or more meet.
-     */
-    void
-    record_impulses(const GrainFieldLayout<dim> &layout,
-                    const unsigned int           node,
-                    const unsigned int           n,
-                    const double                *masses,
-                    const bool                  *rigid,
-                    const Tensor<1, dim>        *normals,
-                    const Tensor<1, dim>        *before,
-                    const Tensor<1, dim>        *after,
-                    ConstraintImpulses<dim>     &impulses) const;
-
     /** The friction coefficient of the contact model (0 without). */
     double
     friction_coefficient() const
