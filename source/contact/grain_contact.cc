@@ -83,23 +83,62 @@ namespace grainmpm
 
   template <int dim>
   unsigned int
-  GrainContact<dim>::apply_contact(
+  GrainContact<dim>::apply_contact(const GrainFieldLayout<dim> &layout,
+                                   const VectorType            &masses,
+                                   const VectorType            &normals,
+                                   VectorType                  &velocities,
+                                   std::vector<unsigned char>  *node_in_contact,
+                                   ConstraintImpulses<dim>     *impulses) const
+  {
+    return sweep(layout,
+                 masses,
+                 normals,
+                 velocities,
+                 law_options(),
+                 nullptr,
+                 nullptr,
+                 node_in_contact,
+                 impulses);
+  }
+
+
+
+  template <int dim>
+  void
+  GrainContact<dim>::decide_contact(
     const GrainFieldLayout<dim>     &layout,
     const VectorType                &masses,
     const VectorType                &normals,
     VectorType                      &velocities,
-    std::vector<unsigned char>      *node_in_contact,
-    const double                     mass_threshold,
-    ContactStatus<dim>              *status,
-    ConstraintImpulses<dim>         *impulses,
+    const ContactLawOptions         &options,
     const std::vector<ContactState> *previous_states,
-    const double                     band) const
+    ContactStatus<dim>              &status) const
   {
-    ContactLawOptions options;
-    options.model                = parameters.model;
-    options.friction_coefficient = parameters.friction_coefficient;
-    options.mass_threshold       = mass_threshold;
-    options.band                 = band;
+    sweep(layout,
+          masses,
+          normals,
+          velocities,
+          options,
+          previous_states,
+          &status,
+          nullptr,
+          nullptr);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  GrainContact<dim>::sweep(const GrainFieldLayout<dim>     &layout,
+                           const VectorType                &masses,
+                           const VectorType                &normals,
+                           VectorType                      &velocities,
+                           const ContactLawOptions         &options,
+                           const std::vector<ContactState> *previous_states,
+                           ContactStatus<dim>              *status,
+                           std::vector<unsigned char>      *node_in_contact,
+                           ConstraintImpulses<dim>         *impulses) const
+  {
     ContactNodeFields<dim>      fields(layout);
     std::vector<Tensor<1, dim>> before;
     std::vector<Tensor<1, dim>> node_slips;
@@ -191,205 +230,6 @@ namespace grainmpm
             set_slot_vector<dim>(velocity, velocities, s);
           }
       }
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::reinit_status(const GrainFieldLayout<dim> &layout,
-                                   ContactStatus<dim>          &status) const
-  {
-    const unsigned int n_slots = layout.n_slots();
-    status.slot_state.assign(n_slots, ContactState::free);
-    status.slip_directions.assign(n_slots, Tensor<1, dim>());
-    status.references.assign(n_slots, Tensor<1, dim>());
-    status.allowed.assign(n_slots, 0.);
-    status.wall_slots.clear();
-    status.wall_faces.clear();
-    for (const unsigned int node : grid.boundary_nodes())
-      {
-        const unsigned int faces = grid.node_faces(node);
-        for (unsigned int s = layout.node_slots_begin(node);
-             s < layout.node_slots_end(node);
-             ++s)
-          if (!field_is_rigid[layout.field(s)])
-            for (unsigned int face = 0; face < 2 * dim; ++face)
-              if ((faces & (1U << face)) &&
-                  grid.boundary_condition(face).type != BoundaryType::open)
-                {
-                  status.wall_slots.push_back(s);
-                  status.wall_faces.push_back(face);
-                }
-      }
-    status.wall_state.assign(status.wall_slots.size(), ContactState::free);
-    status.wall_slip_directions.assign(status.wall_slots.size(),
-                                       Tensor<1, dim>());
-    status.wall_allowed.assign(status.wall_slots.size(), 0.);
-    status.any_active = false;
-    status.decided    = false;
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::freeze(const GrainFieldLayout<dim> &layout,
-                            const VectorType            &masses,
-                            const VectorType            &normals,
-                            const VectorType            &velocities,
-                            const double                 mass_threshold,
-                            ContactStatus<dim>          &status,
-                            const double                 band) const
-  {
-    // The states decided before, for the hysteresis.
-    const bool                hysteresis = band > 0. && status.decided;
-    std::vector<ContactState> previous_slots, previous_walls;
-    if (hysteresis)
-      {
-        previous_slots = status.slot_state;
-        previous_walls = status.wall_state;
-      }
-
-    // Contact: the decisions of the contact law at these velocities.
-    std::fill(status.slot_state.begin(),
-              status.slot_state.end(),
-              ContactState::free);
-    VectorType projected(velocities);
-    apply_contact(layout,
-                  masses,
-                  normals,
-                  projected,
-                  nullptr,
-                  mass_threshold,
-                  &status,
-                  nullptr,
-                  hysteresis ? &previous_slots : nullptr,
-                  band);
-
-    // Walls see the velocities after contact, face after face.
-    for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
-      {
-        const unsigned int       s = status.wall_slots[w];
-        const BoundaryCondition &condition =
-          grid.boundary_condition(status.wall_faces[w]);
-        const Tensor<1, dim> normal =
-          ContactLaw<dim>::face_normal(status.wall_faces[w]);
-        Tensor<1, dim> velocity = get_slot_vector<dim>(projected, s);
-        status.wall_allowed[w] =
-          condition.type == BoundaryType::no_slip ?
-            0. :
-            gaps.wall_allowed_approach(s, status.wall_faces[w]);
-        status.wall_state[w] =
-          ContactLaw<dim>::classify_wall(condition,
-                                         normal,
-                                         velocity,
-                                         status.wall_slip_directions[w],
-                                         status.wall_allowed[w],
-                                         hysteresis ? previous_walls[w] :
-                                                      ContactState::free,
-                                         hysteresis ? band : 0.);
-        ContactLaw<dim>::apply_state(status.wall_state[w],
-                                     normal,
-                                     ContactLaw<dim>::wall_friction(condition),
-                                     status.wall_slip_directions[w],
-                                     Tensor<1, dim>(),
-                                     velocity,
-                                     status.wall_allowed[w]);
-        set_slot_vector<dim>(velocity, projected, s);
-      }
-    const auto active = [](const ContactState state) {
-      return state != ContactState::free;
-    };
-    status.decided = true;
-    status.any_active =
-      std::any_of(status.slot_state.begin(), status.slot_state.end(), active) ||
-      std::any_of(status.wall_state.begin(), status.wall_state.end(), active);
-  }
-
-
-
-  template <int dim>
-  unsigned int
-  GrainContact<dim>::apply_frozen(const GrainFieldLayout<dim> &layout,
-                                  const VectorType            &masses,
-                                  const VectorType            &normals,
-                                  const ContactStatus<dim>    &status,
-                                  const Reference              reference,
-                                  VectorType                  &velocities,
-                                  std::vector<unsigned char>  *node_flags,
-                                  ConstraintImpulses<dim>     *impulses) const
-  {
-    if (!status.any_active)
-      return 0;
-    // The preconditioner's linear part leaves out the friction of sliding
-    // slots (see Reference::linear).
-    const double mu =
-      reference == Reference::linear ? 0. : friction_coefficient();
-    const Tensor<1, dim>        zero;
-    ContactNodeFields<dim>      fields(layout);
-    std::vector<Tensor<1, dim>> before;
-    unsigned int                n_active = 0;
-    for (const unsigned int node : layout.contact_nodes())
-      {
-        const unsigned int begin = layout.node_slots_begin(node);
-        const unsigned int end   = layout.node_slots_end(node);
-        bool               any   = false;
-        for (unsigned int s = begin; s < end; ++s)
-          any = any || (status.slot_state[s] != ContactState::free);
-        if (!any)
-          continue;
-        ++n_active;
-        if (node_flags != nullptr)
-          (*node_flags)[node] = 1;
-        fields.gather(
-          layout, field_is_rigid, masses, normals, velocities, node);
-        if (impulses != nullptr)
-          before = fields.velocities;
-        ContactNode<dim> view = fields.view();
-        if (reference != Reference::zero && reference != Reference::linear)
-          view.allowed = status.allowed.data() + begin;
-        ContactLaw<dim>::project_node_frozen(
-          view,
-          status.slot_state.data() + begin,
-          status.slip_directions.data() + begin,
-          mu,
-          reference == Reference::frozen ? &status.references[begin] :
-          reference == Reference::zero   ? &zero :
-                                           nullptr);
-        fields.scatter(velocities);
-        if (impulses != nullptr)
-          impulses->add_node(
-            layout, node, grid.node_position(node), view, before.data());
-      }
-
-    for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
-      if (status.wall_state[w] != ContactState::free)
-        {
-          const unsigned int   s        = status.wall_slots[w];
-          Tensor<1, dim>       velocity = get_slot_vector<dim>(velocities, s);
-          const Tensor<1, dim> before   = velocity;
-          ContactLaw<dim>::apply_state(
-            status.wall_state[w],
-            ContactLaw<dim>::face_normal(status.wall_faces[w]),
-            reference == Reference::linear ?
-              0. :
-              ContactLaw<dim>::wall_friction(
-                grid.boundary_condition(status.wall_faces[w])),
-            status.wall_slip_directions[w],
-            Tensor<1, dim>(),
-            velocity,
-            reference == Reference::zero || reference == Reference::linear ?
-              0. :
-              status.wall_allowed[w]);
-          set_slot_vector<dim>(velocity, velocities, s);
-          if (impulses != nullptr)
-            impulses->add_wall(status.wall_faces[w],
-                               masses.local_element(s),
-                               before,
-                               velocity);
-        }
-    return n_active;
   }
 
 

@@ -115,8 +115,6 @@ namespace grainmpm
                                                          state.normals,
                                                          velocities,
                                                          &state.node_in_contact,
-                                                         0.,
-                                                         nullptr,
                                                          impulses);
     contact.apply_walls(layout, velocities, &state.masses, impulses);
     return n_contact;

@@ -71,8 +71,6 @@ namespace grainmpm
                           state.normals,
                           velocities_old,
                           &state.node_in_contact,
-                          0.,
-                          nullptr,
                           &state.impulses);
     contact.apply_walls(layout, velocities_old, &state.masses, &state.impulses);
     copy_slot_vector(velocities_old, rigid_velocities);

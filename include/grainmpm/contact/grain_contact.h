@@ -9,6 +9,7 @@
 #include <grainmpm/contact/constraint_impulses.h>
 #include <grainmpm/contact/contact_law.h>
 #include <grainmpm/contact/contact_node_fields.h>
+#include <grainmpm/contact/contact_status.h>
 #include <grainmpm/contact/gap_estimator.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
@@ -18,49 +19,19 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
-#include <array>
+#include <utility>
 #include <vector>
 
 namespace grainmpm
 {
   /**
-   * The contact and wall status of one step, frozen by GrainContact::freeze
-   * and applied by GrainContact::apply_frozen (the implicit scheme). Given
-   * the status, the constraints are a linear map of the velocities.
-   */
-  template <int dim>
-  struct ContactStatus
-  {
-    /** State, slip direction and partner velocity v_ref per owned slot. */
-    std::vector<ContactState>   slot_state;
-    std::vector<Tensor<1, dim>> slip_directions;
-    std::vector<Tensor<1, dim>> references;
-    /** The approach speed the gap allows per owned slot (gap check). */
-    std::vector<double> allowed;
-
-    /** Wall entries: (slot, face) of deformable slots at closed faces. */
-    std::vector<unsigned int>   wall_slots;
-    std::vector<unsigned char>  wall_faces;
-    std::vector<ContactState>   wall_state;
-    std::vector<Tensor<1, dim>> wall_slip_directions;
-    std::vector<double>         wall_allowed;
-
-    /** Whether any slot or wall entry is not free. */
-    bool any_active = false;
-    /** Whether the states were decided (by freeze) since reinit_status. */
-    bool decided = false;
-  };
-
-
-
-  /**
    * The Bardenhagen-Brackbill-Sulsky contact between the velocity fields of
    * grains that meet at a grid node (Bardenhagen, Brackbill & Sulsky 2000;
    * Cummins & Brackbill 2001, eqs. 5-6), the rigid walls on the faces of
    * the box, and the rigid grains: the contact normals and the sweeps of
-   * the contact law (ContactLaw) over the contact nodes and the walls. The
-   * explicit scheme applies the law as it decides the states, the implicit
-   * residual applies it with the states frozen.
+   * the contact law (ContactLaw) over the contact nodes and the walls,
+   * deciding the states (the explicit scheme, and ContactStatus::freeze()
+   * for the implicit one, which applies them frozen with ContactStatus).
    *
    * At a contact node every field g gets the normal
    * n_g = (g_g - sum_{k != g} g_k) / |...| from the mass gradients
@@ -75,28 +46,6 @@ namespace grainmpm
   {
   public:
     using VectorType = LinearAlgebra::distributed::Vector<double>;
-
-    /**
-     * Where the projection takes the partner velocity v_ref of a node: from
-     * the velocities it acts on (the rigid field or the centre of mass,
-     * with the momentum-restoring shift at nodes of three or more
-     * deformable fields), the value frozen with the status (no shift: the
-     * preconditioner's simplified Jacobian), or zero (no shift: the linear
-     * part of the simplified projection, which acts on velocity
-     * differences). `linear` takes it from the velocities as
-     * `from_velocities` does, shift included, but leaves out the approach
-     * the gap allows and the friction of sliding fields and walls (the
-     * tangential correction that follows the normal one): the symmetric
-     * part of the linearised frozen projection, which couples the fields
-     * of a node, for the assembled preconditioner.
-     */
-    enum class Reference
-    {
-      from_velocities,
-      frozen,
-      zero,
-      linear
-    };
 
     /**
      * @p field_is_rigid says for each field whether it belongs to a rigid
@@ -144,27 +93,35 @@ namespace grainmpm
 
     /**
      * Apply the contact law to @p velocities (dim per slot) at every
-     * contact node, deciding the states. Slots with a mass not above
-     * @p mass_threshold are left alone. Sets (*@p node_in_contact)[node]
-     * (if given) for nodes where a field was corrected, and returns their
-     * number. If
-     * @p status is given, records the states decided (a field corrected in
-     * any pass keeps the state of its last correction) and the partner
-     * velocities; if @p impulses is given, the impulses of the corrections.
-     * With @p previous_states (per slot) and @p band > 0 the decisions have
-     * the hysteresis of classify() against those states (freeze()).
+     * contact node, deciding the states (ContactLaw::project_node()). Sets
+     * (*@p node_in_contact)[node] (if given) for nodes where a field was
+     * corrected, and returns their number. With @p impulses, records the
+     * impulses of the corrections.
      */
     unsigned int
-    apply_contact(const GrainFieldLayout<dim>     &layout,
-                  const VectorType                &masses,
-                  const VectorType                &normals,
-                  VectorType                      &velocities,
-                  std::vector<unsigned char>      *node_in_contact,
-                  const double                     mass_threshold  = 0.,
-                  ContactStatus<dim>              *status          = nullptr,
-                  ConstraintImpulses<dim>         *impulses        = nullptr,
-                  const std::vector<ContactState> *previous_states = nullptr,
-                  const double                     band            = 0.) const;
+    apply_contact(const GrainFieldLayout<dim> &layout,
+                  const VectorType            &masses,
+                  const VectorType            &normals,
+                  VectorType                  &velocities,
+                  std::vector<unsigned char>  *node_in_contact = nullptr,
+                  ConstraintImpulses<dim>     *impulses        = nullptr) const;
+
+    /**
+     * The sweep of apply_contact() with the law's @p options (its mass
+     * threshold and hysteresis band), recording in @p status what it
+     * decides (ContactStatus::freeze()): per slot the state and slip
+     * direction of the first pass, the partner velocity and the approach
+     * the gap allows. With @p previous_states (per slot) the decisions have
+     * the hysteresis of ContactLaw::classify() against them.
+     */
+    void
+    decide_contact(const GrainFieldLayout<dim>     &layout,
+                   const VectorType                &masses,
+                   const VectorType                &normals,
+                   VectorType                      &velocities,
+                   const ContactLawOptions         &options,
+                   const std::vector<ContactState> *previous_states,
+                   ContactStatus<dim>              &status) const;
 
     /**
      * Apply the wall conditions of the box faces to the deformable fields
@@ -176,49 +133,6 @@ namespace grainmpm
                 VectorType                  &velocities,
                 const VectorType            *masses   = nullptr,
                 ConstraintImpulses<dim>     *impulses = nullptr) const;
-
-    /**
-     * Size @p status for @p layout: every slot free, one wall entry per
-     * (deformable slot, closed face) at boundary nodes.
-     */
-    void
-    reinit_status(const GrainFieldLayout<dim> &layout,
-                  ContactStatus<dim>          &status) const;
-
-    /**
-     * Decide and freeze the contact and wall states for the velocities
-     * @p velocities: the contact law as apply_contact() applies it (slots
-     * with a mass not above @p mass_threshold free), then the walls on the
-     * velocities after contact. With @p band > 0 and a status frozen
-     * before in this step, the decisions have the hysteresis of
-     * classify() against the states in @p status: a state changes only
-     * when the velocities cross its threshold by more than @p band.
-     */
-    void
-    freeze(const GrainFieldLayout<dim> &layout,
-           const VectorType            &masses,
-           const VectorType            &normals,
-           const VectorType            &velocities,
-           const double                 mass_threshold,
-           ContactStatus<dim>          &status,
-           const double                 band = 0.) const;
-
-    /**
-     * Apply the frozen @p status to @p velocities in place: contact at the
-     * nodes with a constrained slot, with v_ref taken as @p reference
-     * says, then the walls. Flags the nodes where contact is active in
-     * @p node_in_contact (if given) and returns their number. With
-     * @p impulses, records the impulses of contact and walls.
-     */
-    unsigned int
-    apply_frozen(const GrainFieldLayout<dim> &layout,
-                 const VectorType            &masses,
-                 const VectorType            &normals,
-                 const ContactStatus<dim>    &status,
-                 const Reference              reference,
-                 VectorType                  &velocities,
-                 std::vector<unsigned char>  *node_in_contact = nullptr,
-                 ConstraintImpulses<dim>     *impulses        = nullptr) const;
 
     /**
      * The work of the constraints that changed @p before into @p after
@@ -236,15 +150,59 @@ namespace grainmpm
         layout, field_is_rigid, masses, before, after, rate);
     }
 
-  private:
-    /** The friction coefficient of the contact model (0 without). */
-    double
-    friction_coefficient() const
+    /**
+     * The options of the contact law: the contact model and friction
+     * coefficient of the parameters, with @p mass_threshold and the
+     * hysteresis band @p band.
+     */
+    ContactLawOptions
+    law_options(const double mass_threshold = 0., const double band = 0.) const
     {
-      return parameters.model == ContactModel::coulomb_friction ?
-               parameters.friction_coefficient :
-               0.;
+      ContactLawOptions options;
+      options.model                = parameters.model;
+      options.friction_coefficient = parameters.friction_coefficient;
+      options.mass_threshold       = mass_threshold;
+      options.band                 = band;
+      return options;
     }
+
+    /** The grid, whose box faces are the walls. */
+    const BackgroundGrid<dim> &
+    get_grid() const
+    {
+      return grid;
+    }
+
+    /** For each field: whether it belongs to a rigid grain. */
+    const std::vector<bool> &
+    get_field_is_rigid() const
+    {
+      return field_is_rigid;
+    }
+
+    /** The gap check. */
+    const GapEstimator<dim> &
+    get_gaps() const
+    {
+      return gaps;
+    }
+
+  private:
+    /**
+     * The sweep of apply_contact() and decide_contact(): the law with
+     * @p options at every contact node, recording what the arguments that
+     * are not null ask for.
+     */
+    unsigned int
+    sweep(const GrainFieldLayout<dim>     &layout,
+          const VectorType                &masses,
+          const VectorType                &normals,
+          VectorType                      &velocities,
+          const ContactLawOptions         &options,
+          const std::vector<ContactState> *previous_states,
+          ContactStatus<dim>              *status,
+          std::vector<unsigned char>      *node_in_contact,
+          ConstraintImpulses<dim>         *impulses) const;
 
     const ContactParameters           &parameters;
     const BackgroundGrid<dim>         &grid;
