@@ -3,25 +3,20 @@
 
 #include <grainmpm/contact/grain_contact.h>
 
-#include <deal.II/lac/vector.h>
-
 #include <algorithm>
 #include <cmath>
 
 namespace grainmpm
 {
   template <int dim>
-  GrainContact<dim>::GrainContact(const ContactParameters           &parameters,
-                                  const BackgroundGrid<dim>         &grid,
-                                  const std::vector<GrainInfo<dim>> &grains,
-                                  const std::vector<bool> &field_is_rigid)
+  GrainContact<dim>::GrainContact(const ContactParameters     &parameters,
+                                  const BackgroundGrid<dim>   &grid,
+                                  const RigidGrainMotion<dim> &rigid_motion,
+                                  const std::vector<bool>     &field_is_rigid)
     : parameters(parameters)
     , grid(grid)
-    , grains(grains)
+    , rigid_motion(rigid_motion)
     , field_is_rigid(field_is_rigid)
-    , has_rigid_fields(std::find(field_is_rigid.begin(),
-                                 field_is_rigid.end(),
-                                 true) != field_is_rigid.end())
     , gaps(grid, parameters.gap_check)
   {}
 
@@ -51,31 +46,6 @@ namespace grainmpm
             if (length > 0.)
               set_slot_vector<dim>(direction / length, normals, s);
           }
-      }
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::prescribe_rigid_velocities(
-    const GrainFieldLayout<dim> &layout,
-    VectorType                  &velocities,
-    const double                 time) const
-  {
-    if (!has_rigid_fields)
-      return;
-    Vector<double> value(dim);
-    for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
-      {
-        const unsigned int field = layout.field(slot);
-        if (!field_is_rigid[field])
-          continue;
-        FunctionParser<dim> &function = *grains[field].prescribed_velocity;
-        function.set_time(time);
-        function.vector_value(grid.node_position(layout.node(slot)), value);
-        for (unsigned int d = 0; d < dim; ++d)
-          velocities.local_element(slot * dim + d) = value[d];
       }
   }
 

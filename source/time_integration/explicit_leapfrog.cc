@@ -13,7 +13,10 @@ namespace grainmpm
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
     : parameters(parameters)
     , transfer(parameters, grid, grains, materials)
-    , contact(parameters.contact, grid, grains, transfer.get_field_is_rigid())
+    , contact(parameters.contact,
+              grid,
+              transfer.get_rigid_motion(),
+              transfer.get_field_is_rigid())
   {}
 
 

@@ -62,6 +62,7 @@ namespace grainmpm
     , grid(grid)
     , grains(grains)
     , materials(materials)
+    , rigid_motion(grains, parameters.grains, grid)
     , field_of_grain(grains.size())
     , field_is_rigid(grains.size(), false)
   {
@@ -381,22 +382,11 @@ namespace grainmpm
     if (finite &&
         (grains[grain].rigid || !explicit_scheme || !(cells_crossed > 1.)))
       return "";
+    // (The points of rigid grains are checked by
+    // RigidGrainMotion::move_point().)
 
     std::ostringstream message;
     message << "at t = " << time + dt << " (step dt = " << dt << ") ";
-    if (!finite && grains[grain].rigid)
-      {
-        // Only the prescribed velocity moves a rigid grain.
-        const GrainParameters<dim> &source = parameters.grains[grain];
-        message << "it is not finite at the material point " << id
-                << " of the rigid grain " << grain + 1 << " at x = ("
-                << old_position
-                << "): the velocity must be finite at all times.";
-        return InputError(source.source + "/Prescribed velocity = " +
-                            source.prescribed_velocity,
-                          message.str())
-          .what();
-      }
     message << "material point " << id << " of grain " << grain + 1 << " ("
             << parameters.grains[grain].source << ") ";
     if (!finite)
@@ -441,7 +431,6 @@ namespace grainmpm
     const Tensor<1, dim> &h     = grid.cell_size();
     const Point<dim>     &lower = grid.lower_corner();
     const Point<dim>     &upper = grid.upper_corner();
-    Vector<double>        prescribed(dim);
     double                max_speed_square        = 0.;
     double                particle_kinetic_change = 0.;
     // sum_p 1/2 m_p |dv_p|^2 of the interpolated grid velocity change.
@@ -479,15 +468,20 @@ namespace grainmpm
         if (grains[grain].rigid)
           {
             // Rigid grains follow their prescribed velocity (midpoint rule).
-            FunctionParser<dim> &function = *grains[grain].prescribed_velocity;
-            function.set_time(time + 0.5 * dt);
-            function.vector_value(old_position, prescribed);
-            for (unsigned int d = 0; d < dim; ++d)
-              new_position[d] = old_position[d] + dt * prescribed[d];
-            function.set_time(time + dt);
-            function.vector_value(new_position, prescribed);
-            for (unsigned int d = 0; d < dim; ++d)
-              new_velocity[d] = prescribed[d];
+            if (const std::string failure =
+                  rigid_motion.move_point(grain,
+                                          particle->get_id(),
+                                          old_position,
+                                          time,
+                                          dt,
+                                          new_position,
+                                          new_velocity);
+                !failure.empty())
+              {
+                error            = failure;
+                error_from_rigid = true;
+                return;
+              }
           }
         else
           {

@@ -14,6 +14,7 @@
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/transfer/grain_field_layout.h>
+#include <grainmpm/transfer/rigid_grain_motion.h>
 
 #include <deal.II/base/tensor.h>
 
@@ -49,12 +50,12 @@ namespace grainmpm
 
     /**
      * @p field_is_rigid says for each field whether it belongs to a rigid
-     * grain; rigid grains take their prescribed velocities from @p grains.
+     * grain; rigid grains move as @p rigid_motion says.
      */
-    GrainContact(const ContactParameters           &parameters,
-                 const BackgroundGrid<dim>         &grid,
-                 const std::vector<GrainInfo<dim>> &grains,
-                 const std::vector<bool>           &field_is_rigid);
+    GrainContact(const ContactParameters     &parameters,
+                 const BackgroundGrid<dim>   &grid,
+                 const RigidGrainMotion<dim> &rigid_motion,
+                 const std::vector<bool>     &field_is_rigid);
 
     /**
      * Contact normals (dim numbers per slot) at the contact nodes of
@@ -85,11 +86,17 @@ namespace grainmpm
       gaps.compute(layout, volumes, dt);
     }
 
-    /** Set the slots of rigid fields to their velocity at @p time. */
+    /**
+     * Set the slots of rigid fields to their velocity at @p time
+     * (RigidGrainMotion::prescribe()).
+     */
     void
     prescribe_rigid_velocities(const GrainFieldLayout<dim> &layout,
                                VectorType                  &velocities,
-                               const double                 time) const;
+                               const double                 time) const
+    {
+      rigid_motion.prescribe(layout, velocities, time);
+    }
 
     /**
      * Apply the contact law to @p velocities (dim per slot) at every
@@ -204,11 +211,10 @@ namespace grainmpm
           std::vector<unsigned char>      *node_in_contact,
           ConstraintImpulses<dim>         *impulses) const;
 
-    const ContactParameters           &parameters;
-    const BackgroundGrid<dim>         &grid;
-    const std::vector<GrainInfo<dim>> &grains;
-    const std::vector<bool>           &field_is_rigid;
-    const bool                         has_rigid_fields;
+    const ContactParameters     &parameters;
+    const BackgroundGrid<dim>   &grid;
+    const RigidGrainMotion<dim> &rigid_motion;
+    const std::vector<bool>     &field_is_rigid;
 
     /** The gap check. */
     GapEstimator<dim> gaps;

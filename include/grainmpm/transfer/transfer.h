@@ -11,6 +11,7 @@
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/transfer/grain_field_layout.h>
+#include <grainmpm/transfer/rigid_grain_motion.h>
 #include <grainmpm/transfer/transfer_cache.h>
 
 #include <deal.II/base/tensor.h>
@@ -91,6 +92,13 @@ namespace grainmpm
     get_grains() const
     {
       return grains;
+    }
+
+    /** The motion of the rigid grains. */
+    const RigidGrainMotion<dim> &
+    get_rigid_motion() const
+    {
+      return rigid_motion;
     }
 
     /** For each field: whether it belongs to a rigid grain. */
@@ -305,10 +313,9 @@ namespace grainmpm
     /**
      * What is wrong with the update of the material point @p id of grain
      * @p grain from @p old_position to @p new_position and @p new_velocity
-     * in the step from @p time by @p dt: a non-finite value (a prescribed
-     * velocity that is not finite, or a diverged solution), or in the
-     * explicit scheme a move of more than one cell (a blow-up). Empty if
-     * nothing.
+     * in the step from @p time by @p dt: a non-finite value (a diverged
+     * solution), or in the explicit scheme a move of more than one cell
+     * (a blow-up). Empty if nothing.
      */
     std::string
     check_update(const types::particle_index id,
@@ -323,6 +330,7 @@ namespace grainmpm
     const BackgroundGrid<dim>                                  &grid;
     const std::vector<GrainInfo<dim>>                          &grains;
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
+    const RigidGrainMotion<dim>                                 rigid_motion;
 
     std::vector<unsigned int> field_of_grain;
     std::vector<bool>         field_is_rigid;
