@@ -63,8 +63,6 @@ namespace grainmpm
                               state.velocities_new);
     statistics.friction_work += friction_work;
     statistics.boundary_work += boundary_work;
-    contact.prescribe_rigid_velocities(layout, state.velocities_new, time + dt);
-
     transfer.grid_to_particles(particle_handler,
                                state.masses,
                                state.velocities_new,
@@ -73,6 +71,9 @@ namespace grainmpm
                                time,
                                dt,
                                statistics);
+    // (After the particles, which read no rigid slot: a prescribed velocity
+    // that is not finite at t + dt is reported at a material point.)
+    contact.prescribe_rigid_velocities(layout, state.velocities_new, time + dt);
 
     if (parameters.time_stepping.stress_update == StressUpdate::usl)
       // The strain velocity is v^{n+1}, the constrained velocity that moved

@@ -87,16 +87,20 @@ namespace grainmpm
   {
     if (!has_rigid_grains)
       return;
+    std::string error;
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
       {
         const unsigned int field = layout.field(slot);
         if (!grains[field].rigid)
           continue;
-        const Tensor<1, dim> value =
-          velocity(grains[field], grid.node_position(layout.node(slot)), time);
+        const Point<dim>    &node  = grid.node_position(layout.node(slot));
+        const Tensor<1, dim> value = velocity(grains[field], node, time);
         for (unsigned int d = 0; d < dim; ++d)
           velocities.local_element(slot * dim + d) = value[d];
+        if (error.empty() && !is_finite<dim>(value))
+          error = not_finite(field, time, 0., "a grid node", node);
       }
+    throw_on_all_ranks(error, grid.get_triangulation().get_communicator());
   }
 
 

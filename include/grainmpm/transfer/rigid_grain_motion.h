@@ -65,7 +65,8 @@ namespace grainmpm
     /**
      * Set the slots of the rigid fields of @p layout in @p velocities (dim
      * per slot) to the prescribed velocities at their nodes at @p time (a
-     * rigid grain has a field of its own, with its index).
+     * rigid grain has a field of its own, with its index). Throws on all
+     * ranks the InputError of a velocity that is not finite. Collective.
      */
     void
     prescribe(const GrainFieldLayout<dim> &layout,
