@@ -112,21 +112,15 @@ namespace grainmpm
                        "the grain.";
             return InputError(entry, message.str()).what();
           }
-      if (material.constitutive_model == ConstitutiveModelType::von_mises)
-        {
-          const SymmetricTensor<2, 3> s          = deviator(stress);
-          const double                equivalent = std::sqrt(1.5 * (s * s));
-          if (equivalent > material.yield_stress * (1. + 1e-12))
-            {
-              message << "its von Mises stress " << equivalent
-                      << " at the point (" << point
-                      << ") is above the yield stress " << material.yield_stress
-                      << " of Materials/" << material.name
-                      << "/Yield stress: an initial stress must be "
-                         "admissible.";
-              return InputError(entry, message.str()).what();
-            }
-        }
+      // What the material's model admits (a von Mises material: at most
+      // the yield stress).
+      std::ostringstream where;
+      where << " at the point (" << point << ")";
+      const std::string inadmissible =
+        material.get_model_parameters().check_initial_stress(
+          stress, where.str(), "Materials/" + material.name + "/");
+      if (!inadmissible.empty())
+        return InputError(entry, inadmissible).what();
       Layout::set_stress(stress, make_array_view(properties));
       return "";
     }
