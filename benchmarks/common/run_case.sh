@@ -53,16 +53,3 @@ speeds() {
         for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
         printf "%s%.3f", (printed > 0 ? " " : ""), a[int((m + 1) / 2)]; ++printed } }' "$work/$1/grains.csv"
 }
-
-# value NAME PATTERN: the number after PATTERN in the screen summary (being
-# replaced by figure, which reads summary.csv).
-value() {
-  grep -F "$2" "$work/$1.out" | head -1 | sed 's/.*[:=] *//; s/,.*//; s/ .*//'
-}
-
-# ledger_entry NAME KEY: the number after "KEY = " in the summary's energy
-# ledger line (KEY: plastic work, friction work, boundary work, transfers,
-# balance residual).
-ledger_entry() {
-  grep -F "energy ledger" "$work/$1.out" | sed "s/.*$2 = //; s/[, ].*//"
-}
