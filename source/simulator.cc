@@ -515,18 +515,32 @@ namespace grainmpm
                     largest_plastic_strain,
                     time_step_controller->smallest_step_tried());
 
-    // Peak resident memory (machine-dependent, so not in test mode).
+    std::vector<SummaryRow> rows =
+      summary.rows(n_steps,
+                   time,
+                   n_lost_total,
+                   n_points,
+                   largest_plastic_strain,
+                   time_step_controller->smallest_step_tried());
+
+    // Peak resident memory and wall times (machine-dependent, so not in
+    // test mode).
     if (!parameters.output.test_mode)
       {
         Utilities::System::MemoryStats memory;
         Utilities::System::get_memory_stats(memory);
-        const double peak = memory.VmHWM / 1024.; // MiB
-        pcout << "  peak memory: " << Utilities::MPI::sum(peak, communicator)
-              << " MiB summed over "
+        const double peak     = memory.VmHWM / 1024.; // MiB
+        const double peak_sum = Utilities::MPI::sum(peak, communicator);
+        const double peak_max = Utilities::MPI::max(peak, communicator);
+        pcout << "  peak memory: " << peak_sum << " MiB summed over "
               << Utilities::MPI::n_mpi_processes(communicator)
-              << " ranks, largest rank "
-              << Utilities::MPI::max(peak, communicator) << " MiB" << std::endl;
+              << " ranks, largest rank " << peak_max << " MiB" << std::endl;
+        append_measured_rows(
+          rows, wall_clock.wall_time(), timer, peak_sum, peak_max);
       }
+    write_summary_file(parameters.output.directory + "/summary.csv",
+                       rows,
+                       communicator);
   }
 
 

@@ -58,6 +58,10 @@ namespace grainmpm
                                    "' in it (disk full, or no permission?).")
                         .what();
           };
+        // The summary of an earlier run in this directory would be taken
+        // for this run's if it stops on an error.
+        std::error_code ignored;
+        std::filesystem::remove(directory + "/summary.csv", ignored);
         write(original_file_name(input_file),
               [&](std::ostream &out) { out << expand_includes(input_file); });
         write("parameters.prm", [&](std::ostream &out) {
