@@ -288,6 +288,8 @@ namespace grainmpm
     unsigned int     max_status_changes   = 2;
     /** Hysteresis band of the contact status, in units of U. */
     double status_tolerance = 0.;
+    /** One screen line per Newton iteration and per solve. */
+    bool verbose = false;
 
     void
     declare(ParameterHandler &prm);

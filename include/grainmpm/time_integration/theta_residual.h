@@ -8,8 +8,8 @@
 #include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
-#include <grainmpm/solvers/elastic_preconditioner.h>
 #include <grainmpm/solvers/newton_krylov.h>
+#include <grainmpm/time_integration/implicit/elastic_preconditioner.h>
 #include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
 
@@ -152,11 +152,11 @@ namespace grainmpm
     }
 
     /**
-     * Assemble the elastic preconditioner (ElasticPreconditioner) with the
-     * slot-wise projections of the status frozen at present (the linear
-     * part of the simplified projection, probed with one unit vector per
-     * direction). @p x is not used: the elastic stiffness is that of the
-     * particles at t^n.
+     * Set up the elastic preconditioner (ElasticPreconditioner::setup())
+     * for the status frozen at present: it probes the linear part of the
+     * projection (apply_projection() with GrainContact::Reference::linear)
+     * slot by slot. @p x is not used: the elastic stiffness is that of
+     * the particles at t^n.
      */
     void
     setup_preconditioner(const VectorType &x) override;
@@ -304,14 +304,6 @@ namespace grainmpm
     ElasticPreconditioner<dim> preconditioner;
     /** Whether the slots changed since the preconditioner was assembled. */
     bool preconditioner_pattern_stale = true;
-    /**
-     * The linear part of the frozen projection for the preconditioner,
-     * the largest number of slots at a node (any rank), and the place of
-     * each owned and ghost slot among the slots of its node.
-     */
-    SlotProjection<dim>       projection;
-    unsigned int              slots_per_node = 0;
-    std::vector<unsigned int> slot_places;
 
     /** Work vectors of evaluate(). */
     mutable VectorType work_projected;
