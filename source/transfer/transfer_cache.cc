@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/particles/material_point_layout.h>
+#include <grainmpm/transfer/shape_functions.h>
 #include <grainmpm/transfer/transfer_cache.h>
 
 #include <algorithm>
@@ -11,26 +12,6 @@ namespace grainmpm
 {
   namespace
   {
-    /** The hat N(u) = max(0, 1 - |u|). */
-    inline double
-    hat(const double u)
-    {
-      return std::max(0., 1. - std::abs(u));
-    }
-
-    /** Phi(u), the integral of the hat from -infinity to u. */
-    inline double
-    hat_integral(const double u)
-    {
-      if (u <= -1.)
-        return 0.;
-      if (u >= 1.)
-        return 1.;
-      if (u <= 0.)
-        return 0.5 * (1. + u) * (1. + u);
-      return 1. - 0.5 * (1. - u) * (1. - u);
-    }
-
     /**
      * The GIMP weights along one axis, in units of the cell size: a
      * particle whose interval is [a, b] (cut at the box faces) and the
@@ -55,15 +36,16 @@ namespace grainmpm
         for (int offset = (a < 0. ? -1 : 0); offset <= (b > 1. ? 2 : 1);
              ++offset)
           {
-            const double value =
-              (hat_integral(b - offset) - hat_integral(a - offset)) *
-              inverse_length;
+            const double value = (HatKernel::integral(b - offset) -
+                                  HatKernel::integral(a - offset)) *
+                                 inverse_length;
             if (value > 0.)
               {
-                offsets[n] = offset;
-                values[n]  = value;
-                derivatives[n] =
-                  (hat(b - offset) - hat(a - offset)) * inverse_length;
+                offsets[n]     = offset;
+                values[n]      = value;
+                derivatives[n] = (HatKernel::value(b - offset) -
+                                  HatKernel::value(a - offset)) *
+                                 inverse_length;
                 ++n;
               }
           }
