@@ -7,168 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
 namespace grainmpm
 {
-  namespace
-  {
-    // Passes of projection and momentum restoration at nodes where three or
-    // more deformable grains meet.
-    constexpr unsigned int max_projection_passes = 1000;
-
-
-
-    /**
-     * The partner velocity v_ref of a node from its velocities: the first
-     * rigid field's (infinite mass) or the centre of mass of the
-     * deformable fields (Cummins & Brackbill eq. 6). Also returns the
-     * deformable fields' momentum, mass and number. False if the node has
-     * neither a rigid field nor deformable mass.
-     */
-    template <int dim>
-    bool
-    node_reference(const unsigned int    n_fields,
-                   const double         *masses,
-                   const bool           *rigid,
-                   const Tensor<1, dim> *velocities,
-                   Tensor<1, dim>       &reference,
-                   Tensor<1, dim>       &momentum,
-                   double               &total_mass,
-                   int                  &rigid_field,
-                   unsigned int         &n_deformable)
-    {
-      momentum     = Tensor<1, dim>();
-      total_mass   = 0.;
-      rigid_field  = -1;
-      n_deformable = 0;
-      for (unsigned int k = 0; k < n_fields; ++k)
-        if (rigid[k])
-          {
-            if (rigid_field < 0)
-              rigid_field = k;
-          }
-        else
-          {
-            total_mass += masses[k];
-            momentum += masses[k] * velocities[k];
-            ++n_deformable;
-          }
-      reference = Tensor<1, dim>();
-      if (rigid_field >= 0)
-        reference = velocities[rigid_field];
-      else if (total_mass > 0.)
-        reference = momentum / total_mass;
-      else
-        return false;
-      return true;
-    }
-
-
-
-    /**
-     * Shift all fields with mass by the change of the node's momentum from
-     * @p momentum_before over the node mass @p total_mass (no rigid field
-     * at the node); returns the size of the shift.
-     */
-    template <int dim>
-    double
-    restore_momentum(const unsigned int    n_fields,
-                     const double         *masses,
-                     const Tensor<1, dim> &momentum_before,
-                     const double          total_mass,
-                     Tensor<1, dim>       *velocities)
-    {
-      Tensor<1, dim> momentum_after;
-      for (unsigned int k = 0; k < n_fields; ++k)
-        momentum_after += masses[k] * velocities[k];
-      const Tensor<1, dim> shift =
-        (momentum_after - momentum_before) / total_mass;
-      for (unsigned int k = 0; k < n_fields; ++k)
-        if (masses[k] > 0.)
-          velocities[k] -= shift;
-      return shift.norm();
-    }
-
-    /**
-     * The position s (in cells along the normal, from the node) of a flat
-     * surface whose material fills the fraction @p phi of the node's
-     * support: phi = Phi(s), Phi the integral of the hat from -1 to s.
-     */
-    inline double
-    surface_position(double phi)
-    {
-      phi = std::min(1., std::max(0., phi));
-      return phi <= 0.5 ? -1. + std::sqrt(2. * phi) :
-                          1. - std::sqrt(2. * (1. - phi));
-    }
-
-
-
-    /**
-     * The fields of one contact node copied from the slot vectors into
-     * contiguous arrays, for the contact law at the node, and the corrected
-     * velocities copied back.
-     */
-    template <int dim>
-    struct NodeFields
-    {
-      using VectorType = LinearAlgebra::distributed::Vector<double>;
-
-      /** Room for the largest contact node of @p layout. */
-      explicit NodeFields(const GrainFieldLayout<dim> &layout)
-      {
-        unsigned int capacity = 0;
-        for (const unsigned int node : layout.contact_nodes())
-          capacity = std::max(capacity,
-                              layout.node_slots_end(node) -
-                                layout.node_slots_begin(node));
-        // (std::vector<bool> has no data().)
-        rigid.reset(new bool[capacity]);
-      }
-
-      /** Copy the fields of @p node. */
-      void
-      gather(const GrainFieldLayout<dim> &layout,
-             const std::vector<bool>     &field_is_rigid,
-             const VectorType            &slot_masses,
-             const VectorType            &slot_normals,
-             const VectorType            &slot_velocities,
-             const unsigned int           node)
-      {
-        begin = layout.node_slots_begin(node);
-        n     = layout.node_slots_end(node) - begin;
-        masses.resize(n);
-        normals.resize(n);
-        velocities.resize(n);
-        for (unsigned int k = 0; k < n; ++k)
-          {
-            masses[k]     = slot_masses.local_element(begin + k);
-            rigid[k]      = field_is_rigid[layout.field(begin + k)];
-            normals[k]    = get_slot_vector<dim>(slot_normals, begin + k);
-            velocities[k] = get_slot_vector<dim>(slot_velocities, begin + k);
-          }
-      }
-
-      /** Copy the velocities back. */
-      void
-      scatter(VectorType &slot_velocities) const
-      {
-        for (unsigned int k = 0; k < n; ++k)
-          set_slot_vector<dim>(velocities[k], slot_velocities, begin + k);
-      }
-
-      unsigned int                begin = 0;
-      unsigned int                n     = 0;
-      std::vector<double>         masses;
-      std::vector<Tensor<1, dim>> normals;
-      std::vector<Tensor<1, dim>> velocities;
-      std::unique_ptr<bool[]>     rigid;
-    };
-  } // namespace
-
-
-
   template <int dim>
   GrainContact<dim>::GrainContact(const ContactParameters           &parameters,
                                   const BackgroundGrid<dim>         &grid,
@@ -181,6 +22,7 @@ namespace grainmpm
     , has_rigid_fields(std::find(field_is_rigid.begin(),
                                  field_is_rigid.end(),
                                  true) != field_is_rigid.end())
+    , gaps(grid, parameters.gap_check)
   {}
 
 
@@ -216,88 +58,6 @@ namespace grainmpm
 
   template <int dim>
   void
-  GrainContact<dim>::compute_gaps(const GrainFieldLayout<dim> &layout,
-                                  const VectorType            &volumes,
-                                  const double                 dt)
-  {
-    // The support of a node, int S_i dx = prod_d h_d, halved for every box
-    // face the node lies on.
-    double support = 1.;
-    for (unsigned int d = 0; d < dim; ++d)
-      support *= grid.cell_size()[d];
-    gap_dt = dt;
-    slot_fills.resize(layout.n_slots());
-    for (unsigned int s = 0; s < layout.n_slots(); ++s)
-      {
-        const unsigned int faces = grid.node_faces(layout.node(s));
-        slot_fills[s]            = volumes.local_element(s) *
-                        (1U << __builtin_popcount(faces)) / support;
-      }
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::node_allowed_approach(const unsigned int    begin,
-                                           const unsigned int    n,
-                                           const double         *masses,
-                                           const bool           *rigid,
-                                           const Tensor<1, dim> *normals,
-                                           double               *allowed) const
-  {
-    const Tensor<1, dim> &h               = grid.cell_size();
-    double                deformable_mass = 0., fill_sum = 0.;
-    bool                  rigid_partner = false;
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        fill_sum += slot_fills[begin + k];
-        if (rigid[k])
-          rigid_partner = true;
-        else
-          deformable_mass += masses[k];
-      }
-    for (unsigned int k = 0; k < n; ++k)
-      {
-        allowed[k] = 0.;
-        if (rigid[k] || normals[k].norm_square() == 0. ||
-            !(deformable_mass > 0.))
-          continue;
-        double h_normal = 0.;
-        for (unsigned int d = 0; d < dim; ++d)
-          h_normal += (h[d] * normals[k][d]) * (h[d] * normals[k][d]);
-        const double fill = slot_fills[begin + k];
-        const double gap =
-          std::sqrt(h_normal) *
-          (surface_position(1. - (fill_sum - fill)) - surface_position(fill));
-        if (gap > 0.)
-          allowed[k] =
-            (rigid_partner ? 1. :
-                             (deformable_mass - masses[k]) / deformable_mass) *
-            gap / gap_dt;
-      }
-  }
-
-
-
-  template <int dim>
-  double
-  GrainContact<dim>::wall_allowed_approach(const unsigned int slot,
-                                           const unsigned int face) const
-  {
-    if (!uses_gaps())
-      return 0.;
-    // The in-box half of the support along the wall normal: a flat surface
-    // filling the fraction phi of it lies 1 - sqrt(phi) cells from the wall.
-    const double gap = grid.cell_size()[face / 2] *
-                       (1. - std::sqrt(std::min(1., slot_fills[slot])));
-    return gap / gap_dt;
-  }
-
-
-
-  template <int dim>
-  void
   GrainContact<dim>::prescribe_rigid_velocities(
     const GrainFieldLayout<dim> &layout,
     VectorType                  &velocities,
@@ -322,237 +82,6 @@ namespace grainmpm
 
 
   template <int dim>
-  ContactState
-  GrainContact<dim>::classify(const Tensor<1, dim> &relative,
-                              const Tensor<1, dim> &normal,
-                              const double          mu,
-                              Tensor<1, dim>       &slip_direction,
-                              const double          allowed,
-                              const ContactState    previous,
-                              const double          band)
-  {
-    // D of eq. (5): approaching iff relative . n > 0 (beyond the approach
-    // the gap allows); then stick if mu D >= |v_t| (mu' = min(mu, C/D) =
-    // C/D removes all relative tangential velocity), else slip by mu D.
-    // The hysteresis band shifts both tests against a change of state.
-    slip_direction            = Tensor<1, dim>();
-    const double normal_speed = relative * normal;
-    const double approach     = normal_speed - allowed;
-    const double catch_shift =
-      band > 0. ? (previous == ContactState::free ? band : -band) : 0.;
-    if (!(approach > catch_shift))
-      return ContactState::free;
-    const Tensor<1, dim> tangential  = relative - normal_speed * normal;
-    const double         slip        = tangential.norm();
-    const double         stick_shift = band > 0. ?
-                                         (previous == ContactState::sticking ? band :
-                                          previous == ContactState::sliding ? -band :
-                                                                              0.) :
-                                         0.;
-    if (mu > 0. && mu * approach + stick_shift >= slip)
-      return ContactState::sticking;
-    if (mu > 0.)
-      slip_direction = tangential / slip;
-    return ContactState::sliding;
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::apply_state(const ContactState    state,
-                                 const Tensor<1, dim> &normal,
-                                 const double          mu,
-                                 const Tensor<1, dim> &slip_direction,
-                                 const Tensor<1, dim> &reference,
-                                 Tensor<1, dim>       &velocity,
-                                 const double          allowed)
-  {
-    if (state == ContactState::sticking)
-      velocity = reference + allowed * normal;
-    else if (state == ContactState::sliding)
-      {
-        const double approach = (velocity - reference) * normal - allowed;
-        velocity -= approach * normal + (mu * approach) * slip_direction;
-      }
-  }
-
-
-
-  template <int dim>
-  bool
-  GrainContact<dim>::project_node(const unsigned int    n_fields,
-                                  const double         *masses,
-                                  const bool           *rigid,
-                                  const Tensor<1, dim> *normals,
-                                  Tensor<1, dim>       *velocities,
-                                  const ContactModel    model,
-                                  const double          friction_coefficient,
-                                  const double          mass_threshold,
-                                  ContactState         *states,
-                                  Tensor<1, dim>       *slip_directions,
-                                  Tensor<1, dim>       *reference_out,
-                                  const double         *allowed,
-                                  const ContactState   *previous_states,
-                                  const double          band)
-  {
-    if (states != nullptr)
-      for (unsigned int k = 0; k < n_fields; ++k)
-        {
-          states[k]          = ContactState::free;
-          slip_directions[k] = Tensor<1, dim>();
-        }
-    Tensor<1, dim> reference, momentum_before;
-    double         total_mass;
-    int            rigid_field;
-    unsigned int   n_deformable;
-    const bool     has_reference = node_reference(n_fields,
-                                              masses,
-                                              rigid,
-                                              velocities,
-                                              reference,
-                                              momentum_before,
-                                              total_mass,
-                                              rigid_field,
-                                              n_deformable);
-    if (reference_out != nullptr)
-      *reference_out = reference;
-    if (!has_reference)
-      return false;
-    const double mu =
-      (model == ContactModel::coulomb_friction) ? friction_coefficient : 0.;
-
-    // One pass of eq. (5) over the fields, deciding each field's state;
-    // returns whether one was corrected.
-    const auto decide_and_project = [&]() {
-      bool corrected_in_pass = false;
-      for (unsigned int k = 0; k < n_fields; ++k)
-        {
-          if (rigid[k] || !(masses[k] > mass_threshold))
-            continue;
-          ContactState   state = ContactState::sticking;
-          Tensor<1, dim> slip_direction;
-          // Without contact (a single deformable field), deformable
-          // material sticks to a rigid body.
-          if (model != ContactModel::none)
-            {
-              if (normals[k].norm_square() == 0.)
-                continue;
-              state = classify(velocities[k] - reference,
-                               normals[k],
-                               mu,
-                               slip_direction,
-                               allowed != nullptr ? allowed[k] : 0.,
-                               previous_states != nullptr ? previous_states[k] :
-                                                            ContactState::free,
-                               previous_states != nullptr ? band : 0.);
-              if (state == ContactState::free)
-                continue; // separating: free
-            }
-          apply_state(state,
-                      normals[k],
-                      mu,
-                      slip_direction,
-                      reference,
-                      velocities[k],
-                      allowed != nullptr ? allowed[k] : 0.);
-          if (states != nullptr)
-            {
-              states[k]          = state;
-              slip_directions[k] = slip_direction;
-            }
-          corrected_in_pass = true;
-        }
-      return corrected_in_pass;
-    };
-
-    const bool corrected = decide_and_project();
-    // Two deformable fields (antiparallel normals) or a rigid partner: one
-    // pass conserves momentum, respectively is all there is. Three or more
-    // deformable fields: the normals cannot all be pairwise antiparallel and
-    // the pass changes the node's momentum. Remove that change by a common
-    // velocity shift and decide and project again, until no field
-    // approaches and the momentum is restored (the state "all fields at
-    // v_cm" satisfies both, so the alternation has a fixed point; it
-    // converges in a few passes). End on exact momentum.
-    if (corrected && rigid_field < 0 && n_deformable > 2)
-      {
-        double velocity_scale = 0.;
-        for (unsigned int k = 0; k < n_fields; ++k)
-          velocity_scale =
-            std::max(velocity_scale, (velocities[k] - reference).norm());
-        // Only the first pass's decisions are recorded (and have the
-        // hysteresis).
-        states          = nullptr;
-        previous_states = nullptr;
-        for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
-          if (restore_momentum(
-                n_fields, masses, momentum_before, total_mass, velocities) <=
-                1e-14 * velocity_scale ||
-              !decide_and_project())
-            break;
-        restore_momentum(
-          n_fields, masses, momentum_before, total_mass, velocities);
-      }
-    return corrected;
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::project_node_frozen(const unsigned int    n_fields,
-                                         const double         *masses,
-                                         const bool           *rigid,
-                                         const Tensor<1, dim> *normals,
-                                         const ContactState   *states,
-                                         const Tensor<1, dim> *slip_directions,
-                                         const Reference       reference_mode,
-                                         const Tensor<1, dim> &frozen_reference,
-                                         const double    friction_coefficient,
-                                         Tensor<1, dim> *velocities,
-                                         const double   *allowed)
-  {
-    Tensor<1, dim> reference, momentum_before;
-    double         total_mass;
-    int            rigid_field;
-    unsigned int   n_deformable;
-    node_reference(n_fields,
-                   masses,
-                   rigid,
-                   velocities,
-                   reference,
-                   momentum_before,
-                   total_mass,
-                   rigid_field,
-                   n_deformable);
-    if (reference_mode == Reference::frozen)
-      reference = frozen_reference;
-    else if (reference_mode == Reference::zero)
-      reference = Tensor<1, dim>();
-
-    for (unsigned int k = 0; k < n_fields; ++k)
-      apply_state(states[k],
-                  normals[k],
-                  friction_coefficient,
-                  slip_directions[k],
-                  reference,
-                  velocities[k],
-                  allowed != nullptr ? allowed[k] : 0.);
-    // Three or more deformable fields: one momentum-restoring shift. The
-    // map stays linear in the velocities; alternating it with the frozen
-    // projection until the shift vanishes converges slowly without
-    // friction and diverges with it (tests/contact/frozen_multi_grain_01).
-    if ((reference_mode == Reference::from_velocities ||
-         reference_mode == Reference::linear) &&
-        rigid_field < 0 && n_deformable > 2)
-      restore_momentum(
-        n_fields, masses, momentum_before, total_mass, velocities);
-  }
-
-
-
-  template <int dim>
   unsigned int
   GrainContact<dim>::apply_contact(
     const GrainFieldLayout<dim>     &layout,
@@ -566,7 +95,12 @@ namespace grainmpm
     const std::vector<ContactState> *previous_states,
     const double                     band) const
   {
-    NodeFields<dim>             fields(layout);
+    ContactLawOptions options;
+    options.model                = parameters.model;
+    options.friction_coefficient = parameters.friction_coefficient;
+    options.mass_threshold       = mass_threshold;
+    options.band                 = band;
+    ContactNodeFields<dim>      fields(layout);
     std::vector<Tensor<1, dim>> before;
     std::vector<Tensor<1, dim>> node_slips;
     std::vector<ContactState>   node_states;
@@ -580,33 +114,22 @@ namespace grainmpm
         node_states.resize(n);
         node_slips.resize(n);
         node_allowed.assign(n, 0.);
+        ContactNode<dim> view = fields.view();
         if (uses_gaps())
-          node_allowed_approach(fields.begin,
-                                n,
-                                fields.masses.data(),
-                                fields.rigid.get(),
-                                fields.normals.data(),
-                                node_allowed.data());
+          gaps.node_allowed_approach(fields.begin, view, node_allowed.data());
+        view.allowed = node_allowed.data();
         if (impulses != nullptr)
           before = fields.velocities;
         Tensor<1, dim> reference;
-        const bool     corrected =
-          project_node(n,
-                       fields.masses.data(),
-                       fields.rigid.get(),
-                       fields.normals.data(),
-                       fields.velocities.data(),
-                       parameters.model,
-                       parameters.friction_coefficient,
-                       mass_threshold,
-                       status != nullptr ? node_states.data() : nullptr,
-                       node_slips.data(),
-                       &reference,
-                       node_allowed.data(),
-                       previous_states != nullptr ?
-                         previous_states->data() + fields.begin :
-                         nullptr,
-                       band);
+        view.reference = &reference;
+        if (status != nullptr)
+          {
+            view.states          = node_states.data();
+            view.slip_directions = node_slips.data();
+          }
+        if (previous_states != nullptr)
+          view.previous_states = previous_states->data() + fields.begin;
+        const bool corrected = ContactLaw<dim>::project_node(options, view);
         if (status != nullptr)
           for (unsigned int k = 0; k < n; ++k)
             {
@@ -639,62 +162,6 @@ namespace grainmpm
 
 
   template <int dim>
-  ContactState
-  GrainContact<dim>::classify_wall(const BoundaryCondition &condition,
-                                   const Tensor<1, dim>    &normal,
-                                   const Tensor<1, dim>    &velocity,
-                                   Tensor<1, dim>          &slip_direction,
-                                   const double             allowed,
-                                   const ContactState       previous,
-                                   const double             band)
-  {
-    slip_direction = Tensor<1, dim>();
-    switch (condition.type)
-      {
-        case BoundaryType::open:
-          return ContactState::free;
-        case BoundaryType::no_slip:
-          return ContactState::sticking;
-        case BoundaryType::free_slip:
-        case BoundaryType::friction:
-          // Unilateral: only motion into the wall is removed, so grains
-          // can rebound and leave.
-          return classify(velocity,
-                          normal,
-                          wall_friction(condition),
-                          slip_direction,
-                          allowed,
-                          previous,
-                          band);
-      }
-    return ContactState::free;
-  }
-
-
-
-  template <int dim>
-  void
-  GrainContact<dim>::apply_wall(const BoundaryCondition &condition,
-                                const Tensor<1, dim>    &normal,
-                                Tensor<1, dim>          &velocity,
-                                const double             allowed)
-  {
-    Tensor<1, dim>     slip_direction;
-    const ContactState state =
-      classify_wall(condition, normal, velocity, slip_direction, allowed);
-    // (A no-slip wall sticks whatever the gap.)
-    apply_state(state,
-                normal,
-                wall_friction(condition),
-                slip_direction,
-                Tensor<1, dim>(),
-                velocity,
-                condition.type == BoundaryType::no_slip ? 0. : allowed);
-  }
-
-
-
-  template <int dim>
   void
   GrainContact<dim>::apply_walls(const GrainFieldLayout<dim> &layout,
                                  VectorType                  &velocities,
@@ -717,10 +184,11 @@ namespace grainmpm
               if (faces & (1U << face))
                 {
                   const Tensor<1, dim> before = velocity;
-                  apply_wall(grid.boundary_condition(face),
-                             face_normal(face),
-                             velocity,
-                             wall_allowed_approach(s, face));
+                  ContactLaw<dim>::apply_wall(
+                    grid.boundary_condition(face),
+                    ContactLaw<dim>::face_normal(face),
+                    velocity,
+                    gaps.wall_allowed_approach(s, face));
                   if (impulses != nullptr)
                     impulses->walls[face] += impulses->scale *
                                              masses->local_element(s) *
@@ -811,27 +279,29 @@ namespace grainmpm
         const unsigned int       s = status.wall_slots[w];
         const BoundaryCondition &condition =
           grid.boundary_condition(status.wall_faces[w]);
-        const Tensor<1, dim> normal   = face_normal(status.wall_faces[w]);
-        Tensor<1, dim>       velocity = get_slot_vector<dim>(projected, s);
+        const Tensor<1, dim> normal =
+          ContactLaw<dim>::face_normal(status.wall_faces[w]);
+        Tensor<1, dim> velocity = get_slot_vector<dim>(projected, s);
         status.wall_allowed[w] =
           condition.type == BoundaryType::no_slip ?
             0. :
-            wall_allowed_approach(s, status.wall_faces[w]);
+            gaps.wall_allowed_approach(s, status.wall_faces[w]);
         status.wall_state[w] =
-          classify_wall(condition,
-                        normal,
-                        velocity,
-                        status.wall_slip_directions[w],
-                        status.wall_allowed[w],
-                        hysteresis ? previous_walls[w] : ContactState::free,
-                        hysteresis ? band : 0.);
-        apply_state(status.wall_state[w],
-                    normal,
-                    wall_friction(condition),
-                    status.wall_slip_directions[w],
-                    Tensor<1, dim>(),
-                    velocity,
-                    status.wall_allowed[w]);
+          ContactLaw<dim>::classify_wall(condition,
+                                         normal,
+                                         velocity,
+                                         status.wall_slip_directions[w],
+                                         status.wall_allowed[w],
+                                         hysteresis ? previous_walls[w] :
+                                                      ContactState::free,
+                                         hysteresis ? band : 0.);
+        ContactLaw<dim>::apply_state(status.wall_state[w],
+                                     normal,
+                                     ContactLaw<dim>::wall_friction(condition),
+                                     status.wall_slip_directions[w],
+                                     Tensor<1, dim>(),
+                                     velocity,
+                                     status.wall_allowed[w]);
         set_slot_vector<dim>(velocity, projected, s);
       }
     const auto active = [](const ContactState state) {
@@ -862,7 +332,8 @@ namespace grainmpm
     // slots (see Reference::linear).
     const double mu =
       reference == Reference::linear ? 0. : friction_coefficient();
-    NodeFields<dim>             fields(layout);
+    const Tensor<1, dim>        zero;
+    ContactNodeFields<dim>      fields(layout);
     std::vector<Tensor<1, dim>> before;
     unsigned int                n_active = 0;
     for (const unsigned int node : layout.contact_nodes())
@@ -881,20 +352,17 @@ namespace grainmpm
           layout, field_is_rigid, masses, normals, velocities, node);
         if (impulses != nullptr)
           before = fields.velocities;
-        project_node_frozen(fields.n,
-                            fields.masses.data(),
-                            fields.rigid.get(),
-                            fields.normals.data(),
-                            status.slot_state.data() + begin,
-                            status.slip_directions.data() + begin,
-                            reference,
-                            status.references[begin],
-                            mu,
-                            fields.velocities.data(),
-                            reference == Reference::zero ||
-                                reference == Reference::linear ?
-                              nullptr :
-                              status.allowed.data() + begin);
+        ContactNode<dim> view = fields.view();
+        if (reference != Reference::zero && reference != Reference::linear)
+          view.allowed = status.allowed.data() + begin;
+        ContactLaw<dim>::project_node_frozen(
+          view,
+          status.slot_state.data() + begin,
+          status.slip_directions.data() + begin,
+          mu,
+          reference == Reference::frozen ? &status.references[begin] :
+          reference == Reference::zero   ? &zero :
+                                           nullptr);
         fields.scatter(velocities);
         if (impulses != nullptr)
           record_impulses(layout,
@@ -914,12 +382,13 @@ namespace grainmpm
           const unsigned int   s        = status.wall_slots[w];
           Tensor<1, dim>       velocity = get_slot_vector<dim>(velocities, s);
           const Tensor<1, dim> before   = velocity;
-          apply_state(
+          ContactLaw<dim>::apply_state(
             status.wall_state[w],
-            face_normal(status.wall_faces[w]),
+            ContactLaw<dim>::face_normal(status.wall_faces[w]),
             reference == Reference::linear ?
               0. :
-              wall_friction(grid.boundary_condition(status.wall_faces[w])),
+              ContactLaw<dim>::wall_friction(
+                grid.boundary_condition(status.wall_faces[w])),
             status.wall_slip_directions[w],
             Tensor<1, dim>(),
             velocity,

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// The contact law with frozen states (GrainContact::project_node_frozen,
+// The contact law with frozen states (ContactLaw::project_node_frozen,
 // what the implicit residual applies) against the law deciding the states
-// (GrainContact::project_node, what the explicit scheme applies), with the
+// (ContactLaw::project_node, what the explicit scheme applies), with the
 // states the deciding law takes in its first pass at the same velocities:
 // - two grains (antiparallel normals): the frozen law gives bit for bit
 //   what the deciding law gives, satisfies the constraints and conserves
@@ -16,7 +16,7 @@
 //   option for the frozen law: with Coulomb friction it diverges at some
 //   nodes of three grains in 2D (a violation of 3.6e5 after 1000 passes).
 
-#include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/contact_law.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -63,7 +63,7 @@ constraint_violation(const unsigned int    n,
       {
         // The frozen map is idempotent on a satisfied constraint.
         Tensor<1, dim> w = v[k];
-        GrainContact<dim>::apply_state(
+        ContactLaw<dim>::apply_state(
           states[k], normals[k], mu, slips[k], centre, w);
         violation = std::max(violation, (w - v[k]).norm());
       }
@@ -104,34 +104,19 @@ test(const ContactModel model, const unsigned int n_fields)
       ContactState   states[4];
       for (unsigned int k = 0; k < n_fields; ++k)
         decided[k] = velocities[k];
-      const bool corrected = GrainContact<dim>::project_node(n_fields,
-                                                             masses,
-                                                             rigid,
-                                                             normals,
-                                                             decided,
-                                                             model,
-                                                             mu,
-                                                             0.,
-                                                             states,
-                                                             slips,
-                                                             &reference);
+      ContactNode<dim> node{n_fields, masses, rigid, normals, decided};
+      node.states          = states;
+      node.slip_directions = slips;
+      node.reference       = &reference;
+      const bool corrected = ContactLaw<dim>::project_node({model, mu}, node);
       if (!corrected)
         continue;
       ++n_nodes_constrained;
 
       // The frozen law on the same velocities.
       const auto frozen_law = [&](Tensor<1, dim> *x) {
-        GrainContact<dim>::project_node_frozen(
-          n_fields,
-          masses,
-          rigid,
-          normals,
-          states,
-          slips,
-          GrainContact<dim>::Reference::from_velocities,
-          reference,
-          mu,
-          x);
+        ContactLaw<dim>::project_node_frozen(
+          {n_fields, masses, rigid, normals, x}, states, slips, mu);
       };
       Tensor<1, dim> frozen[4];
       for (unsigned int k = 0; k < n_fields; ++k)

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::project_node on random nodes (doc/theory.md section 5.2):
+// ContactLaw::project_node on random nodes (doc/theory.md section 5.2):
 // momentum is conserved for two grains with antiparallel normals
 // and for three grains, approaching grains end with no normal relative
 // velocity (two grains), Coulomb friction sticks iff mu D >= C and
 // otherwise reduces the slip by exactly mu D, receding grains are left
 // untouched.
 
-#include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/contact_law.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -68,8 +68,9 @@ test_two_grains(const ContactModel model)
           C[g]                          = (relative - D[g] * normals[g]).norm();
         }
 
-      const bool corrected = GrainContact<dim>::project_node(
-        2, masses, rigid, normals, velocities, model, mu);
+      const bool corrected =
+        ContactLaw<dim>::project_node({model, mu},
+                                      {2, masses, rigid, normals, velocities});
 
       const Tensor<1, dim> momentum_after =
         masses[0] * velocities[0] + masses[1] * velocities[1];
@@ -180,8 +181,8 @@ test_three_grains(const ContactModel model)
       for (unsigned int g = 0; g < 3; ++g)
         approach_before[g] = (velocities[g] - v_cm) * normals[g];
 
-      if (GrainContact<dim>::project_node(
-            3, masses, rigid, normals, velocities, model, mu))
+      if (ContactLaw<dim>::project_node(
+            {model, mu}, {3, masses, rigid, normals, velocities}))
         ++n_corrected;
 
       Tensor<1, dim> momentum_after;

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::project_node on a worked example (doc/theory.md section
+// ContactLaw::project_node on a worked example (doc/theory.md section
 // 5.2): two grains at one node, m_a = 1, v_a = (1, 0.2), n_a = (1, 0) and
 // m_b = 3, v_b = (-1, 0), n_b = (-1, 0), so v_cm = (-0.5, 0.05). With
 // mu = 0.05 both slip (D_a = 1.5, C_a = 0.15): v_a = (-0.5, 0.125),
 // v_b = (-0.5, 0.025); with mu = 0.2 both stick at v_cm; frictionless,
 // v_a = (-0.5, 0.2), v_b = (-0.5, 0). Momentum (-2, 0.2) is unchanged.
 
-#include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/contact_law.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -33,8 +33,9 @@ run(const ContactModel model, const double mu)
     masses[0] * velocities[0] + masses[1] * velocities[1];
   const Tensor<1, 2> v_cm = momentum_before / (masses[0] + masses[1]);
 
-  const bool corrected = GrainContact<2>::project_node(
-    2, masses, rigid, normals, velocities, model, mu);
+  const bool corrected =
+    ContactLaw<2>::project_node({model, mu},
+                                {2, masses, rigid, normals, velocities});
 
   const Tensor<1, 2> momentum_after =
     masses[0] * velocities[0] + masses[1] * velocities[1];

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::project_node leaves receding (and purely sliding) grains
+// ContactLaw::project_node leaves receding (and purely sliding) grains
 // bit-for-bit unchanged (doc/theory.md section 5.2), and treats a rigid
 // partner as infinite mass: the deformable grain gets the rigid
 // velocity's normal component (and friction relative to it), the rigid
 // velocity is not changed, whatever the rigid field's mass.
 
-#include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/contact_law.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -57,8 +57,9 @@ not_approaching(const std::string    &name,
        {ContactModel::frictionless, ContactModel::coulomb_friction})
     {
       Tensor<1, dim> velocities[2] = {v_a, v_b};
-      const bool     corrected     = GrainContact<dim>::project_node(
-        2, masses, rigid, normals, velocities, model, 0.5);
+      const bool     corrected =
+        ContactLaw<dim>::project_node({model, 0.5},
+                                      {2, masses, rigid, normals, velocities});
       const bool unchanged =
         std::memcmp(&velocities[0], &v_a, sizeof(v_a)) == 0 &&
         std::memcmp(&velocities[1], &v_b, sizeof(v_b)) == 0;
@@ -91,8 +92,9 @@ rigid_partner(const ContactModel    model,
     {
       const double   masses[2]     = {2., rigid_mass};
       Tensor<1, dim> velocities[2] = {v_a, v_rigid};
-      const bool     corrected     = GrainContact<dim>::project_node(
-        2, masses, rigid, normals, velocities, model, mu);
+      const bool     corrected =
+        ContactLaw<dim>::project_node({model, mu},
+                                      {2, masses, rigid, normals, velocities});
       if (rigid_mass == 7.)
         {
           results[0] = velocities[0];

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::classify with the hysteresis band of Nonlinear solver/
+// ContactLaw::classify with the hysteresis band of Nonlinear solver/
 // Contact status tolerance: normal n = (1, 0), friction 0.5, band 0.1. A
 // slot that was free is caught only beyond the band of approach, one that
 // was held is released only beyond the band of separation; stick and slip
 // change only beyond the band as well; without a band (or a previous state
 // of a first decision) the plain contact law of Bardenhagen et al. 2001.
 
-#include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/contact_law.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -40,7 +40,7 @@ main(int argc, char **argv)
                             const double       tangential,
                             const ContactState previous,
                             const double       b) {
-    return name(GrainContact<2>::classify(
+    return name(ContactLaw<2>::classify(
       Tensor<1, 2>({approach, tangential}), normal, mu, slip, 0., previous, b));
   };
 

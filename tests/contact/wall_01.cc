@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// GrainContact::apply_wall (doc/theory.md section 6.1): free slip removes
+// ContactLaw::apply_wall (doc/theory.md section 6.1): free slip removes
 // only an approaching normal component, friction sticks iff mu D >= C and
 // otherwise reduces the slip by mu D, no slip zeroes the velocity, open
 // does nothing; checked on every face of the box.
 
-#include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/contact_law.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -22,7 +22,7 @@ check(const BoundaryCondition &condition,
       double                  &max_error)
 {
   Tensor<1, dim> result = velocity;
-  GrainContact<dim>::apply_wall(condition, normal, result);
+  ContactLaw<dim>::apply_wall(condition, normal, result);
 
   // The expected velocity, from the formulas.
   const double         D       = velocity * normal;
@@ -85,7 +85,7 @@ test()
         Tensor<1, dim> velocity;
         velocity[0] = v.first;
         velocity[1] = v.second;
-        GrainContact<dim>::apply_wall(condition.second, normal, velocity);
+        ContactLaw<dim>::apply_wall(condition.second, normal, velocity);
         deallog << condition.first << ", v = (" << v.first << ", " << v.second
                 << ") -> " << velocity << std::endl;
       }

@@ -6,6 +6,9 @@
 
 #include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/contact/contact_law.h>
+#include <grainmpm/contact/contact_node_fields.h>
+#include <grainmpm/contact/gap_estimator.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/transfer/grain_field_layout.h>
@@ -19,22 +22,6 @@
 
 namespace grainmpm
 {
-  /**
-   * The state of one constraint (a slot at a contact node, or a slot at a
-   * wall): free (receding, left alone), sliding (the normal part of the
-   * velocity relative to the partner is removed and, with friction, the
-   * tangential part reduced by mu times the normal part along a slip
-   * direction) or sticking (the slot takes the partner's velocity).
-   */
-  enum class ContactState : unsigned char
-  {
-    free     = 0,
-    sliding  = 1,
-    sticking = 2
-  };
-
-
-
   /**
    * The contact and wall status of one step, frozen by GrainContact::freeze
    * and applied by GrainContact::apply_frozen (the implicit scheme). Given
@@ -115,41 +102,18 @@ namespace grainmpm
    * The Bardenhagen-Brackbill-Sulsky contact between the velocity fields of
    * grains that meet at a grid node (Bardenhagen, Brackbill & Sulsky 2000;
    * Cummins & Brackbill 2001, eqs. 5-6), the rigid walls on the faces of
-   * the box, and the rigid grains. This class is the only implementation of
-   * the contact law; the explicit scheme applies it as it decides the
-   * states, the implicit residual applies it with the states frozen.
+   * the box, and the rigid grains: the contact normals and the sweeps of
+   * the contact law (ContactLaw) over the contact nodes and the walls. The
+   * explicit scheme applies the law as it decides the states, the implicit
+   * residual applies it with the states frozen.
    *
    * At a contact node every field g gets the normal
    * n_g = (g_g - sum_{k != g} g_k) / |...| from the mass gradients
    * g_g = sum_p m_p grad S_ip, so that two fields get exactly antiparallel
-   * normals. Field g approaches iff (v_g - v_ref) . n_g > 0, v_ref being the
-   * centre-of-mass velocity of the node (or the velocity of a rigid field,
-   * which has infinite mass); then the normal part of v_g - v_ref is removed
-   * and the tangential part reduced by Coulomb friction (stick if
-   * mu D >= |dv_t|, else slip by mu D). Receding fields are left alone.
-   * With two deformable fields this conserves the node's momentum exactly.
-   * With three or more the normals cannot all be pairwise antiparallel; the
-   * projection then alternates with a common velocity shift that restores
-   * the node's momentum, until the shift vanishes, so momentum is conserved
-   * at every contact node. With decided states (explicit), each pass
-   * decides again, so no field is left approaching; with frozen states
-   * (implicit), each pass applies the same states, so every constrained
-   * field satisfies its constraint.
+   * normals.
    *
-   * With `Contact/Gap check`, field g may approach its partner by the gap
-   * between their surfaces in one step: the approach D is compared with
-   * the allowed approach speed a_g = (m_rest / m) gap / dt (a_g = gap / dt
-   * with a rigid partner or a wall; m_rest the mass of the node's other
-   * deformable fields, m of all), and only D - a_g is removed (the
-   * friction bound is mu (D - a_g)). The shares m_rest / m make the two
-   * corrections of a two-field node equal and opposite, so momentum stays
-   * exact. The gap comes from the fill fractions phi_g = sum_p V_p S_ip /
-   * V_i of the node's support V_i (cut at the box faces): a flat surface
-   * filling phi of the support lies at s = Phi^{-1}(phi) cells along the
-   * normal (Phi the integral of the hat), so gap = h_n (Phi^{-1}(1 -
-   * phi_rest) - Phi^{-1}(phi_g)), h_n the cell size along the normal; a
-   * wall gives gap = h (1 - sqrt(phi_g)). Two flat blocks in contact have
-   * phi_a + phi_b = 1, gap 0.
+   * With `Contact/Gap check`, a field may approach its partner by the gap
+   * between their surfaces in one step (GapEstimator).
    */
   template <int dim>
   class GrainContact
@@ -201,18 +165,21 @@ namespace grainmpm
     bool
     uses_gaps() const
     {
-      return parameters.gap_check;
+      return gaps.enabled();
     }
 
     /**
      * The fill fractions of the owned slots of @p layout from the slot
-     * volumes @p volumes (sum_p V_p S_ip), for a step of length @p dt: the
-     * data of the gap check until the next call.
+     * volumes @p volumes, for a step of length @p dt: the data of the gap
+     * check until the next call (GapEstimator::compute()).
      */
     void
     compute_gaps(const GrainFieldLayout<dim> &layout,
                  const VectorType            &volumes,
-                 const double                 dt);
+                 const double                 dt)
+    {
+      gaps.compute(layout, volumes, dt);
+    }
 
     /** Set the slots of rigid fields to their velocity at @p time. */
     void
@@ -313,128 +280,6 @@ namespace grainmpm
                     const VectorType            &after,
                     const VectorType            &rate) const;
 
-    /**
-     * The contact law at one node with @p n_fields fields: masses, rigid
-     * flags, normals, and the velocities to correct in place, deciding the
-     * states (slots with mass not above @p mass_threshold are left alone).
-     * Returns true if some field was corrected. If @p states is given, it
-     * receives the state of each field decided in the first pass (and
-     * @p slip_directions the slip directions, @p reference the partner
-     * velocity). With @p previous_states and @p band > 0 the decisions
-     * of the first pass have the hysteresis of classify().
-     */
-    static bool
-    project_node(const unsigned int    n_fields,
-                 const double         *masses,
-                 const bool           *rigid,
-                 const Tensor<1, dim> *normals,
-                 Tensor<1, dim>       *velocities,
-                 const ContactModel    model,
-                 const double          friction_coefficient,
-                 const double          mass_threshold  = 0.,
-                 ContactState         *states          = nullptr,
-                 Tensor<1, dim>       *slip_directions = nullptr,
-                 Tensor<1, dim>       *reference       = nullptr,
-                 const double         *allowed         = nullptr,
-                 const ContactState   *previous_states = nullptr,
-                 const double          band            = 0.);
-
-    /**
-     * The contact law at one node with the states @p states and slip
-     * directions @p slip_directions frozen, applied once (with one
-     * momentum-restoring shift at nodes of three or more deformable fields
-     * if v_ref comes from the velocities); v_ref is @p frozen_reference or
-     * as @p reference says.
-     */
-    static void
-    project_node_frozen(const unsigned int    n_fields,
-                        const double         *masses,
-                        const bool           *rigid,
-                        const Tensor<1, dim> *normals,
-                        const ContactState   *states,
-                        const Tensor<1, dim> *slip_directions,
-                        const Reference       reference,
-                        const Tensor<1, dim> &frozen_reference,
-                        const double          friction_coefficient,
-                        Tensor<1, dim>       *velocities,
-                        const double         *allowed = nullptr);
-
-    /**
-     * The state of a velocity @p relative to its partner (or wall) with
-     * the normal @p normal (pointing into the partner) and friction
-     * coefficient @p mu: with D the approach speed beyond @p allowed,
-     * free if D <= 0, sticking if mu D >= |v_t|, else sliding; sets the
-     * slip direction of a sliding state with friction, zero otherwise.
-     * With a hysteresis band @p band > 0 the tests are shifted against a
-     * change of the state @p previous: a constrained slot is released
-     * only when D < -band and a free one is caught only when D > band; a
-     * sticking slot slips only when |v_t| > mu D + band and a sliding one
-     * sticks only when |v_t| < mu D - band.
-     */
-    static ContactState
-    classify(const Tensor<1, dim> &relative,
-             const Tensor<1, dim> &normal,
-             const double          mu,
-             Tensor<1, dim>       &slip_direction,
-             const double          allowed  = 0.,
-             const ContactState    previous = ContactState::free,
-             const double          band     = 0.);
-
-    /**
-     * Apply @p state to @p velocity with partner velocity @p reference,
-     * leaving the approach speed @p allowed.
-     */
-    static void
-    apply_state(const ContactState    state,
-                const Tensor<1, dim> &normal,
-                const double          mu,
-                const Tensor<1, dim> &slip_direction,
-                const Tensor<1, dim> &reference,
-                Tensor<1, dim>       &velocity,
-                const double          allowed = 0.);
-
-    /**
-     * The state of a wall with @p condition and outward normal @p normal
-     * (pointing into the wall) for @p velocity.
-     */
-    static ContactState
-    classify_wall(const BoundaryCondition &condition,
-                  const Tensor<1, dim>    &normal,
-                  const Tensor<1, dim>    &velocity,
-                  Tensor<1, dim>          &slip_direction,
-                  const double             allowed  = 0.,
-                  const ContactState       previous = ContactState::free,
-                  const double             band     = 0.);
-
-    /**
-     * The unilateral wall condition with outward wall normal @p normal
-     * applied to @p velocity (classify_wall, then apply_state with the wall
-     * at rest).
-     */
-    static void
-    apply_wall(const BoundaryCondition &condition,
-               const Tensor<1, dim>    &normal,
-               Tensor<1, dim>          &velocity,
-               const double             allowed = 0.);
-
-    /** Friction coefficient of a wall with @p condition. */
-    static double
-    wall_friction(const BoundaryCondition &condition)
-    {
-      return condition.type == BoundaryType::friction ?
-               condition.friction_coefficient :
-               0.;
-    }
-
-    /** Outward unit normal of box face @p face (x-, x+, y-, ...). */
-    static Tensor<1, dim>
-    face_normal(const unsigned int face)
-    {
-      Tensor<1, dim> normal;
-      normal[face / 2] = (face % 2 == 0) ? -1. : 1.;
-      return normal;
-    }
-
   private:
     /**
      * Add the contact impulses of the fields @p fields_begin.. of @p node
@@ -455,24 +300,6 @@ namespace grainmpm
                     const Tensor<1, dim>        *after,
                     ConstraintImpulses<dim>     &impulses) const;
 
-    /**
-     * The approach speeds the gaps allow the @p n fields of a contact node
-     * (slots @p begin.. with @p masses, @p rigid and @p normals) into
-     * @p allowed.
-     */
-    void
-    node_allowed_approach(const unsigned int    begin,
-                          const unsigned int    n,
-                          const double         *masses,
-                          const bool           *rigid,
-                          const Tensor<1, dim> *normals,
-                          double               *allowed) const;
-
-    /** The approach speed the gap allows slot @p slot at box face @p face. */
-    double
-    wall_allowed_approach(const unsigned int slot,
-                          const unsigned int face) const;
-
     /** The friction coefficient of the contact model (0 without). */
     double
     friction_coefficient() const
@@ -488,9 +315,8 @@ namespace grainmpm
     const std::vector<bool>           &field_is_rigid;
     const bool                         has_rigid_fields;
 
-    /** Gap check: fill fraction per owned slot, and the step length. */
-    std::vector<double> slot_fills;
-    double              gap_dt = 0.;
+    /** The gap check. */
+    GapEstimator<dim> gaps;
   };
 } // namespace grainmpm
 

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_transfer_shape_functions_h
+#define grainmpm_transfer_shape_functions_h
+
+#include <algorithm>
+#include <cmath>
+
+namespace grainmpm
+{
+  /**
+   * The one-dimensional hat N(u) = max(0, 1 - |u|) (u in cells from the
+   * node) of which the shape functions are made: the Q1 hats are its
+   * products, the GIMP weights its averages over a particle's box
+   * (TransferCache). Its integral Phi and the inverse of Phi also give
+   * where a flat surface lies that fills a given fraction of a node's
+   * support (the gap check of the contact law).
+   */
+  namespace HatKernel
+  {
+    /** N(u) = max(0, 1 - |u|). */
+    inline double
+    value(const double u)
+    {
+      return std::max(0., 1. - std::abs(u));
+    }
+
+    /** Phi(u), the integral of the hat from -infinity to u. */
+    inline double
+    integral(const double u)
+    {
+      if (u <= -1.)
+        return 0.;
+      if (u >= 1.)
+        return 1.;
+      if (u <= 0.)
+        return 0.5 * (1. + u) * (1. + u);
+      return 1. - 0.5 * (1. - u) * (1. - u);
+    }
+
+    /**
+     * The inverse of integral() on [-1, 1]: the u with Phi(u) = @p phi
+     * (clamped to [0, 1]). A flat surface whose material fills the
+     * fraction phi of a node's support lies at u = Phi^{-1}(phi) cells
+     * along the normal.
+     */
+    inline double
+    inverse_integral(double phi)
+    {
+      phi = std::min(1., std::max(0., phi));
+      return phi <= 0.5 ? -1. + std::sqrt(2. * phi) :
+                          1. - std::sqrt(2. * (1. - phi));
+    }
+
+    /**
+     * The inverse for the half hat of a node on a box face (u in [0, 1]
+     * into the box): the u at which the hat beyond u holds the fraction
+     * @p phi (at most 1) of the half hat's integral, 2 int_u^1 N = (1 -
+     * u)^2 = phi. A flat surface whose material fills the fraction phi of
+     * the in-box support lies u = 1 - sqrt(phi) cells from the face.
+     */
+    inline double
+    inverse_half_integral(const double phi)
+    {
+      return 1. - std::sqrt(std::min(1., phi));
+    }
+  } // namespace HatKernel
+} // namespace grainmpm
+
+#endif

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/contact/gap_estimator.h>
+
+#include <cmath>
+
+namespace grainmpm
+{
+  template <int dim>
+  GapEstimator<dim>::GapEstimator(const BackgroundGrid<dim> &grid,
+                                  const bool                 enabled)
+    : grid(grid)
+    , is_enabled(enabled)
+  {}
+
+
+
+  template <int dim>
+  void
+  GapEstimator<dim>::compute(const GrainFieldLayout<dim> &layout,
+                             const VectorType            &volumes,
+                             const double                 dt)
+  {
+    // The support of a node, int S_i dx = prod_d h_d, halved for every box
+    // face the node lies on.
+    double support = 1.;
+    for (unsigned int d = 0; d < dim; ++d)
+      support *= grid.cell_size()[d];
+    this->dt = dt;
+    slot_fills.resize(layout.n_slots());
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      {
+        const unsigned int faces = grid.node_faces(layout.node(s));
+        slot_fills[s]            = volumes.local_element(s) *
+                        (1U << __builtin_popcount(faces)) / support;
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GapEstimator<dim>::node_allowed_approach(const unsigned int      begin,
+                                           const ContactNode<dim> &node,
+                                           double *allowed) const
+  {
+    const Tensor<1, dim> &h               = grid.cell_size();
+    double                deformable_mass = 0., fill_sum = 0.;
+    bool                  rigid_partner = false;
+    for (unsigned int k = 0; k < node.n; ++k)
+      {
+        fill_sum += slot_fills[begin + k];
+        if (node.rigid[k])
+          rigid_partner = true;
+        else
+          deformable_mass += node.masses[k];
+      }
+    for (unsigned int k = 0; k < node.n; ++k)
+      {
+        allowed[k]                   = 0.;
+        const Tensor<1, dim> &normal = node.normals[k];
+        if (node.rigid[k] || normal.norm_square() == 0. ||
+            !(deformable_mass > 0.))
+          continue;
+        double h_normal = 0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          h_normal += (h[d] * normal[d]) * (h[d] * normal[d]);
+        // Where the surfaces of this field and of the others lie.
+        const double fill = slot_fills[begin + k];
+        const double gap =
+          std::sqrt(h_normal) *
+          (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
+           HatKernel::inverse_integral(fill));
+        if (gap > 0.)
+          allowed[k] = (rigid_partner ? 1. :
+                                        (deformable_mass - node.masses[k]) /
+                                          deformable_mass) *
+                       gap / dt;
+      }
+  }
+
+
+
+  template class GapEstimator<2>;
+  template class GapEstimator<3>;
+} // namespace grainmpm
