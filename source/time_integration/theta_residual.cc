@@ -280,7 +280,37 @@ namespace grainmpm
       !status.wall_slots.empty();
     theta_velocities(work_projected, work_theta);
     work_theta.update_ghost_values();
+    const bool inverted = assemble_internal_forces();
+    work_theta.zero_out_ghost_values();
+    // M (V - v^n), before the return on inverted particles: it is
+    // collective.
+    if (!mass_matrix->is_lumped())
+      {
+        const unsigned int n = velocities.locally_owned_size();
+        for (unsigned int k = 0; k < n; ++k)
+          work_increment.local_element(k) =
+            velocities.local_element(k) - old_velocities->local_element(k);
+        mass_matrix->vmult(work_inertia, work_increment);
+      }
+    if (inverted)
+      {
+        // NaN on this rank makes every rank's norm NaN.
+        residual = std::numeric_limits<double>::quiet_NaN();
+        return;
+      }
 
+    raw_residual(velocities, residual);
+    if (raw || !constrained)
+      return;
+    constrain_residual(velocities, residual, simplified);
+  }
+
+
+
+  template <int dim>
+  bool
+  ThetaResidual<dim>::assemble_internal_forces() const
+  {
     // Internal forces from the time-centred stress and volume (eqs. 12-13),
     // on raw pointers and local copies of theta and dt: stores into the
     // forces could otherwise alias them, and they would be reloaded for
@@ -331,26 +361,17 @@ namespace grainmpm
             }
         transfer->subtract_divergence(p, stress, forces);
       }
-
     work_forces.compress(VectorOperation::add);
-    work_theta.zero_out_ghost_values();
-    // M (V - v^n), before the return on inverted particles: it is
-    // collective.
-    if (!mass_matrix->is_lumped())
-      {
-        const unsigned int n = velocities.locally_owned_size();
-        for (unsigned int k = 0; k < n; ++k)
-          work_increment.local_element(k) =
-            velocities.local_element(k) - old_velocities->local_element(k);
-        mass_matrix->vmult(work_inertia, work_increment);
-      }
-    if (inverted)
-      {
-        // NaN on this rank makes every rank's norm NaN.
-        residual = std::numeric_limits<double>::quiet_NaN();
-        return;
-      }
+    return inverted;
+  }
 
+
+
+  template <int dim>
+  void
+  ThetaResidual<dim>::raw_residual(const VectorType &velocities,
+                                   VectorType       &residual) const
+  {
     // R = V - v^n - dt (f / m + g), in velocity units; with the blended
     // mass, M (V - v^n) / m in place of V - v^n. Slots too light to carry
     // a force fall with gravity.
@@ -377,8 +398,17 @@ namespace grainmpm
           residual.local_element(k) =
             inertia - dt * (acceleration + gravity[d]);
         }
-    if (raw || !constrained)
-      return;
+  }
+
+
+
+  template <int dim>
+  void
+  ThetaResidual<dim>::constrain_residual(const VectorType &velocities,
+                                         VectorType       &residual,
+                                         const bool        simplified) const
+  {
+    using Reference = typename GrainContact<dim>::Reference;
 
     // Constrained form R = P R_raw + (V - P V): the frozen projection P is
     // the mass-orthogonal projection onto the velocities that satisfy the

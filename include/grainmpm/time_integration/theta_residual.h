@@ -262,6 +262,32 @@ namespace grainmpm
                      std::vector<unsigned char> *node_in_contact,
                      ConstraintImpulses<dim>    *impulses = nullptr) const;
 
+    /**
+     * The internal forces f_s (eqs. 12-13) at the theta velocities in
+     * work_theta (ghosts updated) into work_forces. Returns whether a
+     * particle is inverted (det(I + dt grad v^theta) <= 0).
+     */
+    bool
+    assemble_internal_forces() const;
+
+    /**
+     * The raw residual R_raw = M_L^-1 M (V - v^n) - dt (f / m + g) of
+     * @p velocities into @p residual, from work_forces (and work_inertia
+     * with the blended mass); rigid slots R = V - prescribed velocity.
+     */
+    void
+    raw_residual(const VectorType &velocities, VectorType &residual) const;
+
+    /**
+     * The constrained form P R_raw + (V - P V) of the raw residual in
+     * @p residual in place, P V being work_projected; with @p simplified
+     * the linear part of the projection.
+     */
+    void
+    constrain_residual(const VectorType &velocities,
+                       VectorType       &residual,
+                       const bool        simplified) const;
+
     /** The communicator of the grid. */
     MPI_Comm
     communicator() const
