@@ -109,7 +109,7 @@ for friction in $frictions; do
       run "$name" slow_compression_explicit "$case_text\n$contact\n$end_text"
       seconds=$(python3 -c "print(f'{$(date +%s.%N) - $start:.0f}')")
     fi
-    steps=$(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //')
+    steps=$(exact "$name" steps)
     mean=$(platen_force "$name" 0)
     last=$(platen_force "$name" "$late")
     echo "| $friction | explicit USL, CFL $cfl | $(python3 -c "print($cfl / 0.25)") | $seconds | $steps | - | - | - | - | $mean | $(ratio "$mean" "$mean_reference") | $last | $(ratio "$last" "$late_reference") |"
@@ -121,11 +121,11 @@ for friction in $frictions; do
     if run "$name" slow_compression_implicit \
       "$case_text\n$contact\n$end_text\nsubsection Time stepping\n  set Time step = $step\nend\n$solver_text" 2> "$work/$name.err"; then
       seconds=$(python3 -c "print(f'{$(date +%s.%N) - $start:.0f}')")
-      steps=$(grep -o 'finished: [0-9]*' "$work/$name.out" | sed 's/finished: //')
+      steps=$(exact "$name" steps)
       mean=$(platen_force "$name" 0)
       last=$(platen_force "$name" "$late")
-      changes=$(python3 -c "print(f'{$(value "$name" "contact status changes") / $steps:.2g}')")
-      echo "| $friction | implicit | $factor | $seconds | $steps | $(value "$name" "rejected steps") | $(value "$name" "Newton iterations per step") | $(value "$name" "linear iterations per Newton") | $changes | $mean | $(ratio "$mean" "$mean_reference") | $last | $(ratio "$last" "$late_reference") |"
+      changes=$(python3 -c "print(f'{$(figure "$name" contact_status_changes) / $steps:.2g}')")
+      echo "| $friction | implicit | $factor | $seconds | $steps | $(figure "$name" rejected_steps) | $(figure "$name" newton_iterations_per_step) | $(figure "$name" linear_iterations_per_newton_iteration) | $changes | $mean | $(ratio "$mean" "$mean_reference") | $last | $(ratio "$last" "$late_reference") |"
     else
       echo "| $friction | implicit | $factor | failed: $(tail -c 300 "$work/$name.err" | tr '\n|' '  ') |"
     fi

@@ -46,26 +46,33 @@ write_case few "$few\nend"
 
 write_case implicit "subsection Time stepping\n  set Scheme = implicit theta\n  set Time step = 1e-3\n  set Maximum number of steps = 2\nend"
 
-# run NAME RANKS: the screen output in NAME-RANKS.out.
+# shellcheck source=common/summary.sh
+source benchmarks/common/summary.sh
+
+# run NAME RANKS: the screen output in NAME-RANKS.out, the run's summary.csv
+# (doc/output.md) in NAME-RANKS.csv.
 run() {
   (cd "$work" && "${mpirun[@]}" -np "$2" "$grainmpm" "$1.prm" > "$1-$2.out" 2>&1)
+  cp "$work/$1/summary.csv" "$work/$1-$2.csv"
 }
-# timer NAME-RANKS SECTION: wall time of a TimerOutput section.
+# timer NAME-RANKS SECTION: wall time of a TimerOutput section on rank 0
+# (SECTION with underscores, e.g. explicit_step).
 timer() {
-  awk -F'|' -v s="$2" '$2 ~ "^ *" s " *$" { gsub(/[ s]/, "", $4); print $4 }' "$work/$1.out"
+  summary_value "$work/$1.csv" "wall_time_$2"
 }
 points() {
-  grep -F "material points left" "$work/$1.out" | sed 's/.*: *//'
+  summary_value "$work/$1.csv" material_points
 }
+# memory NAME-RANKS: peak resident memory summed over the ranks, in MiB.
 memory() {
-  grep -F "peak memory" "$work/$1.out" | sed 's/.*memory: *//; s/ .*//'
+  summary_value "$work/$1.csv" peak_memory "%.6g"
 }
 
 printf '%-14s %5s %10s %6s %14s %16s %12s\n' case ranks points steps "step time [s]" "points*steps/s" "memory [MiB]"
 for name in many few; do
   for ranks in 1 2; do
     run $name $ranks
-    t=$(timer $name-$ranks "explicit step")
+    t=$(timer $name-$ranks explicit_step)
     p=$(points $name-$ranks)
     printf '%-14s %5d %10d %6d %14.3f %16.3e %12.1f\n' \
       "$([ $name = many ] && echo '10,000 grains' || echo '10 grains')" \
@@ -74,14 +81,14 @@ for name in many few; do
   done
 done
 echo
-echo "explicit speed-up 2 ranks vs 1 (10,000 grains): $(awk "BEGIN { printf \"%.2f\", $(timer many-1 'explicit step') / $(timer many-2 'explicit step') }") (goal >= 1.7)"
+echo "explicit speed-up 2 ranks vs 1 (10,000 grains): $(awk "BEGIN { printf \"%.2f\", $(timer many-1 explicit_step) / $(timer many-2 explicit_step) }") (goal >= 1.7)"
 for ranks in 1 2; do
   echo "memory 10,000 grains / 10 grains, $ranks rank(s): $(awk "BEGIN { printf \"%.3f\", $(memory many-$ranks) / $(memory few-$ranks) }") (goal <= 1.3)"
 done
 echo
 for ranks in 1 2; do
   run implicit $ranks
-  evaluations=$(grep -F "residual evaluations per step" "$work/implicit-$ranks.out" | sed 's/.*: *//')
-  t=$(timer implicit-$ranks "implicit step")
-  echo "implicit, $ranks rank(s): $(awk "BEGIN { printf \"%.1f\", 2 * $evaluations / $t }") residual evaluations/s ($(awk "BEGIN { printf \"%.1f\", 2 * $evaluations }") in $t s), peak memory $(memory implicit-$ranks) MiB"
+  evaluations=$(summary_value "$work/implicit-$ranks.csv" residual_evaluations)
+  t=$(timer implicit-$ranks implicit_step)
+  echo "implicit, $ranks rank(s): $(awk "BEGIN { printf \"%.1f\", $evaluations / $t }") residual evaluations/s ($(awk "BEGIN { printf \"%.1f\", $evaluations }") in $(awk "BEGIN { printf \"%.3g\", $t }") s), peak memory $(memory implicit-$ranks) MiB"
 done

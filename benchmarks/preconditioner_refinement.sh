@@ -27,10 +27,10 @@ for preconditioner in "probed Jacobi" AMG; do
     run "$name" slow_compression_one_disk \
       "subsection Background grid\n  set Number of cells = $cells, $cells\nend\nsubsection Time stepping\n  set Time step = $step\n  set End time = $end\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\nend"
     seconds=$(python3 -c "print(f'{$(date +%s.%N) - $start:.1f}')")
-    gmres=$(value "$name" "linear iterations per Newton")
+    gmres=$(figure "$name" linear_iterations_per_newton_iteration)
     growth="-"
     [ -n "$previous" ] && growth=$(python3 -c "print(f'{$gmres / $previous:.2f}')")
-    echo "| $preconditioner | $cells | $step | $seconds | $(value "$name" "Newton iterations per step") | $gmres | $growth |"
+    echo "| $preconditioner | $cells | $step | $seconds | $(figure "$name" newton_iterations_per_step) | $gmres | $growth |"
     previous=$gmres
   done
 done

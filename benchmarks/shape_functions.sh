@@ -28,9 +28,9 @@ for setting in "linear lumped" "uGIMP lumped" "linear blended" "uGIMP blended" "
   row="| $kernel | $mass |"
   for n in 25 50 100 200; do
     run "${kernel}_${mass}_$n" single_grain_rebound_implicit "$choice\nsubsection Background grid\n  set Number of cells = $n, $n\nend\nsubsection Time stepping\n  set End time = 0.45\nend"
-    row="$row $(awk -v e="$(value "${kernel}_${mass}_$n" "E_total(end)")" 'BEGIN { printf "%.1f", 100 * (1 - e) }') |"
+    row="$row $(awk -v e="$(figure "${kernel}_${mass}_$n" total_energy_end)" 'BEGIN { printf "%.1f", 100 * (1 - e) }') |"
   done
   run "${kernel}_${mass}_t2" single_grain_rebound_implicit "$choice"
   run "${kernel}_${mass}_disks" two_disks_implicit "$choice"
-  echo "$row $(value "${kernel}_${mass}_t2" "E_total(end)") | $(value "${kernel}_${mass}_disks" "E_total(end)") | $(value "${kernel}_${mass}_t2" "Newton iterations per step") | $(value "${kernel}_${mass}_t2" "linear iterations per Newton") |"
+  echo "$row $(figure "${kernel}_${mass}_t2" total_energy_end) | $(figure "${kernel}_${mass}_disks" total_energy_end) | $(figure "${kernel}_${mass}_t2" newton_iterations_per_step) | $(figure "${kernel}_${mass}_t2" linear_iterations_per_newton_iteration) |"
 done

@@ -96,13 +96,15 @@ end
 EOF
 }
 
+# shellcheck source=common/summary.sh
+source benchmarks/common/summary.sh
+
 # step_ns NAME: ns per point per step of the TimerOutput sections
-# "explicit step" and "diagnostics" (energy.csv and the other histories).
+# "explicit step" and "diagnostics" (energy.csv and the other histories),
+# from the summary.csv of the run NAME (doc/output.md).
 step_ns() {
-  local t p
-  t=$(awk -F'|' '$2 ~ "^ *(explicit step|diagnostics) *$" { gsub(/[ s]/, "", $4); t += $4 } END { print t }' "$work/$1.out")
-  p=$(grep -F "material points left" "$work/$1.out" | sed 's/.*: *//')
-  awk "BEGIN { printf \"%.1f\", 1e9 * $t / ($p * $steps) }"
+  local summary=$work/$1/summary.csv
+  awk "BEGIN { printf \"%.1f\", 1e9 * ($(summary_value "$summary" wall_time_explicit_step) + $(summary_value "$summary" wall_time_diagnostics)) / ($(summary_value "$summary" material_points) * $steps) }"
 }
 
 plain=$(for run in $(seq 1 "$repeat"); do
@@ -117,7 +119,7 @@ for kernel in $kernels; do
     best=""
     for run in $(seq 1 "$repeat"); do
       (cd "$work" && "${mpirun[@]}" -np "$ranks" "$grainmpm" "$kernel.prm" > "$kernel-$ranks.out" 2>&1)
-      t=$(step_ns "$kernel-$ranks")
+      t=$(step_ns "$kernel")
       best=$(awk -v a="$best" -v b="$t" 'BEGIN { print (a == "" || b < a) ? b : a }')
     done
     if [ "$ranks" = 1 ]; then one=$best; else two=$best; fi

@@ -2,10 +2,10 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
-#include <grainmpm/base/parameter_file.h>
-#include <grainmpm/particles/grain_list.h>
+#include <grainmpm/base/stop_signals.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
+#include <grainmpm/postprocess/input_record.h>
 #include <grainmpm/simulator.h>
 #include <grainmpm/time_integration/explicit_leapfrog.h>
 #include <grainmpm/time_integration/implicit_theta.h>
@@ -15,62 +15,11 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
-#include <filesystem>
-#include <fstream>
-#include <functional>
 #include <iomanip>
 #include <sstream>
 
 namespace grainmpm
 {
-  namespace
-  {
-    /** The stop signal received (SIGTERM, SIGINT), or 0. */
-    volatile std::sig_atomic_t stop_signal = 0;
-
-    extern "C" void
-    record_stop_signal(int signal)
-    {
-      stop_signal = signal;
-      // A second one stops at once.
-      std::signal(signal, SIG_DFL);
-    }
-
-    /**
-     * While it lives, SIGTERM and SIGINT are recorded instead of killing
-     * the process: the time loop stops cleanly after the step.
-     */
-    class StopSignals
-    {
-    public:
-      StopSignals()
-      {
-        stop_signal        = 0;
-        previous_terminate = std::signal(SIGTERM, record_stop_signal);
-        previous_interrupt = std::signal(SIGINT, record_stop_signal);
-      }
-
-      ~StopSignals()
-      {
-        std::signal(SIGTERM, previous_terminate);
-        std::signal(SIGINT, previous_interrupt);
-      }
-
-      /** The signal received on any rank, or 0. Collective. */
-      static int
-      received(const MPI_Comm communicator)
-      {
-        return Utilities::MPI::max(static_cast<int>(stop_signal), communicator);
-      }
-
-    private:
-      void (*previous_terminate)(int);
-      void (*previous_interrupt)(int);
-    };
-  } // namespace
-
-
-
   template <int dim>
   Simulator<dim>::Simulator(const Parameters<dim>  &parameters,
                             const ParameterHandler &prm,
@@ -97,7 +46,7 @@ namespace grainmpm
   {
     try
       {
-        record_inputs(prm, input_file);
+        record_inputs(parameters, prm, input_file, communicator);
       }
     catch (...)
       {
@@ -107,73 +56,6 @@ namespace grainmpm
     for (const auto &material : parameters.materials)
       materials.emplace_back(create_constitutive_model<dim>(
         material, parameters.physics.two_dimensional_model));
-  }
-
-
-
-  template <int dim>
-  void
-  Simulator<dim>::record_inputs(const ParameterHandler &prm,
-                                const std::string      &input_file) const
-  {
-    // The input with its included files expanded (it can be run again as
-    // it is), the values of every parameter (as .prm and as .json), the
-    // generated grains.
-    const std::string &directory = parameters.output.directory;
-    std::string        error;
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      {
-        std::error_code code;
-        std::filesystem::create_directories(directory, code);
-        if (code || !std::filesystem::is_directory(directory))
-          error = InputError("Output/Output directory = " + directory,
-                             "cannot create this directory (" +
-                               (code ? code.message() :
-                                       std::string("a file has its name")) +
-                               "). Choose a directory you can write to.")
-                    .what();
-        const auto write =
-          [&](const std::string                         &name,
-              const std::function<void(std::ostream &)> &what) {
-            if (!error.empty())
-              return;
-            std::ofstream out(directory + "/" + name);
-            bool          failed = false;
-            try
-              {
-                // deal.II's writers throw ExcIO when the stream fails.
-                what(out);
-              }
-            catch (const std::exception &)
-              {
-                failed = true;
-              }
-            out.close();
-            if (failed || !out)
-              error = InputError("Output/Output directory = " + directory,
-                                 "cannot write the file '" + name +
-                                   "' in it (disk full, or no permission?).")
-                        .what();
-          };
-        write(original_file_name(input_file),
-              [&](std::ostream &out) { out << expand_includes(input_file); });
-        write("parameters.prm", [&](std::ostream &out) {
-          prm.print_parameters(out, ParameterHandler::PRM);
-        });
-        write("parameters.json", [&](std::ostream &out) {
-          prm.print_parameters(out, ParameterHandler::JSON);
-        });
-        if (parameters.n_packed_grains > 0)
-          write("packing.csv", [&](std::ostream &out) {
-            // The generated grains, to be read back as a Grain list file.
-            write_grain_list<dim>(
-              out,
-              std::vector<GrainParameters<dim>>(parameters.grains.end() -
-                                                  parameters.n_packed_grains,
-                                                parameters.grains.end()));
-          });
-      }
-    throw_on_all_ranks(error, communicator);
   }
 
 
@@ -250,12 +132,11 @@ namespace grainmpm
       std::make_unique<CheckpointManager<dim>>(parameters.checkpoint,
                                                parameters.output.directory,
                                                communicator);
-    std::uintmax_t energy_length = 0, grains_length = 0, walls_length = 0,
-                   contacts_length = 0;
+    typename Postprocessor<dim>::HistoryLengths lengths;
     if (checkpoints->resuming())
       checkpoints->read_state([&](boost::archive::binary_iarchive &archive) {
-        archive >> energy_length >> grains_length >> walls_length >>
-          contacts_length;
+        archive >> lengths.energy >> lengths.grains >> lengths.walls >>
+          lengths.contacts;
       });
 
     {
@@ -263,7 +144,10 @@ namespace grainmpm
       GrainGenerator<dim> generator(parameters);
       grains = generator.generate(grid, particle_handler);
       if (checkpoints->resuming())
-        checkpoints->load(fingerprint(), grid, particle_handler);
+        checkpoints->load(CheckpointManager<dim>::fingerprint(parameters,
+                                                              grains),
+                          grid,
+                          particle_handler);
 
       if (implicit)
         stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
@@ -280,66 +164,20 @@ namespace grainmpm
         parameters.nonlinear_solver.max_iterations,
         grid.minimum_cell_size(),
         largest_wave_speed(grains, materials));
-
-      // Photoelastic fringe order per unit principal stress difference,
-      // per grain: thickness / material fringe value.
-      std::vector<double> fringe_factors;
-      for (const auto &grain : grains)
-        {
-          const MaterialParameters &material =
-            parameters.materials[grain.material];
-          fringe_factors.push_back(material.material_fringe_value > 0. ?
-                                     material.thickness /
-                                       material.material_fringe_value :
-                                     0.);
-        }
-      output_writer = std::make_unique<OutputWriter<dim>>(parameters.output,
-                                                          grid,
-                                                          fringe_factors);
-      energy_history =
-        std::make_unique<EnergyHistory<dim>>(parameters.output.directory +
-                                               "/energy.csv",
-                                             grains,
-                                             materials,
-                                             parameters.physics.gravity,
-                                             communicator,
-                                             energy_length);
-      for (const auto &grain : grains)
-        grain_is_rigid.push_back(grain.rigid);
-      grain_history =
-        std::make_unique<GrainHistory<dim>>(parameters.output.directory +
-                                              "/grains.csv",
-                                            grain_is_rigid,
-                                            communicator,
-                                            grains_length);
-      std::vector<Point<dim>> centres;
-      for (const auto &motion : grain_history->compute(particle_handler))
-        centres.push_back(motion.centre_of_mass);
-      reaction_history =
-        std::make_unique<ReactionHistory<dim>>(parameters.output.directory +
-                                                 "/walls.csv",
-                                               grid,
-                                               grains,
-                                               centres,
-                                               communicator,
-                                               walls_length);
-      if (parameters.output.write_contacts)
-        contact_history = std::make_unique<ContactHistory<dim>>(
-          parameters.output.directory + "/contacts.csv",
-          parameters.contact.model == ContactModel::coulomb_friction ?
-            parameters.contact.friction_coefficient :
-            0.,
-          communicator,
-          contacts_length);
+      postprocessor = std::make_unique<Postprocessor<dim>>(parameters,
+                                                           grid,
+                                                           grains,
+                                                           materials,
+                                                           particle_handler,
+                                                           lengths,
+                                                           communicator);
     }
     if (checkpoints->resuming())
       {
         checkpoints->read_state(
           [this](boost::archive::binary_iarchive &archive) {
-            archive >> *this >> *energy_history >> *output_writer >>
-              *grain_history >> *reaction_history;
-            if (contact_history)
-              archive >> *contact_history;
+            archive >> *this;
+            postprocessor->serialize(archive, 0);
           });
         checkpoints->finish_resume();
       }
@@ -348,6 +186,27 @@ namespace grainmpm
     // has the partition of the uninterrupted one (and its bits) when it
     // runs on as many ranks.
     balance_load();
+    print_header();
+
+    // Particles that the handler loses (should not happen: G2P checks the
+    // box first) are counted, never silently dropped.
+    particle_handler.signals.particle_lost.connect(
+      [this](const auto &, const auto &) { ++n_lost; });
+
+    if (!parameters.checkpoint.resume_from.empty())
+      pcout << "resumed from " << parameters.checkpoint.resume_from
+            << " at step " << step_offset << ", t = " << start_time
+            << std::endl;
+    else
+      start_new_run();
+  }
+
+
+
+  template <int dim>
+  void
+  Simulator<dim>::print_header()
+  {
     if (!parameters.output.test_mode)
       progress << "grainmpm " << GRAINMPM_VERSION << " on deal.II "
                << DEAL_II_PACKAGE_VERSION << ", " << dim << "D, "
@@ -359,22 +218,16 @@ namespace grainmpm
              << grains.size() << " grains, "
              << particle_handler.n_global_particles() << " material points"
              << std::endl;
+  }
 
-    // Particles that the handler loses (should not happen: G2P checks the
-    // box first) are counted, never silently dropped.
-    particle_handler.signals.particle_lost.connect(
-      [this](const auto &, const auto &) { ++n_lost; });
 
-    if (!parameters.checkpoint.resume_from.empty())
-      {
-        pcout << "resumed from " << parameters.checkpoint.resume_from
-              << " at step " << step_offset << ", t = " << start_time
-              << std::endl;
-        return;
-      }
 
-    // A new run: the initial energies, the momentum scale sum_p m_p |v_p|,
-    // the first output and the first step.
+  template <int dim>
+  void
+  Simulator<dim>::start_new_run()
+  {
+    // The initial energies, the momentum scale sum_p m_p |v_p|, the first
+    // output and the first step.
     double max_speed = 0., momentum_scale = 0.;
     for (const auto &particle : particle_handler)
       {
@@ -389,10 +242,9 @@ namespace grainmpm
     max_speed      = Utilities::MPI::max(max_speed, communicator);
 
     const EnergySummary<dim> initial =
-      energy_history->compute(particle_handler);
+      postprocessor->compute_energies(particle_handler, StepStatistics());
     summary.start(initial, momentum_scale);
-    energy_history->write_row(
-      0, 0., 0., initial, StepStatistics(), summary.get_ledger(), initial);
+    postprocessor->write_initial_row(initial, summary.get_ledger());
     write_output(0, 0., 0., schedule.extra_output_written());
     start_time     = 0.;
     next_step_size = time_step_controller->first_step(max_speed);
@@ -473,21 +325,15 @@ namespace grainmpm
             << " particles left through open faces at t = "
             << time.get_current_time() << std::endl;
 
-    TimerOutput::Scope scope(timer, "diagnostics");
-    reaction_history->write_row(step,
-                                time.get_current_time(),
-                                time.get_previous_step_size(),
-                                stepper->get_impulses());
-    if (contact_history)
-      contact_history->add_step(stepper->get_impulses());
+    TimerOutput::Scope       scope(timer, "diagnostics");
     const EnergySummary<dim> current =
-      statistics.has_particle_sums ? energy_history->summarize(statistics) :
-                                     energy_history->compute(particle_handler);
-    energy_history->write_row(step,
+      postprocessor->compute_energies(particle_handler, statistics);
+    postprocessor->write_step(step,
                               time.get_current_time(),
                               time.get_previous_step_size(),
-                              current,
                               statistics,
+                              stepper->get_impulses(),
+                              current,
                               summary.get_ledger(),
                               summary.get_initial_energies());
     summary.add_energies(current);
@@ -511,30 +357,7 @@ namespace grainmpm
     TimerOutput::Scope scope(timer, "output");
     last_output_step = step;
     last_output_time = time;
-    if (parameters.output.write_particles)
-      output_writer->write_particles(particle_handler, time, index);
-    if (parameters.output.write_grid && step > 0)
-      output_writer->write_grid(*stepper, time, index);
-    const std::vector<GrainMotion<dim>> motions =
-      grain_history->compute(particle_handler);
-    std::vector<GrainContactForce<dim>> contact_forces;
-    if (contact_history)
-      {
-        contact_forces = contact_history->collect(time);
-        contact_history->write(contact_forces, time);
-        output_writer->write_contacts(
-          contact_forces, motions, grain_is_rigid, time, index);
-      }
-    grain_history->write(
-      motions,
-      ContactHistory<dim>::coordination_numbers(contact_forces, grains.size()),
-      time,
-      parameters.output.write_grain_history);
-    // The histories are written on rank 0 every step (energy, walls) or
-    // output (grains): a failed write stops every rank here.
-    energy_history->check_written();
-    reaction_history->check_written();
-    grain_history->check_written();
+    postprocessor->write_output(step, time, index, particle_handler, *stepper);
 
     // The progress line; the wall time and the estimate of the time to
     // the end (from the pace since the loop started) are not in test mode.
@@ -587,33 +410,24 @@ namespace grainmpm
   {
     TimerOutput::Scope scope(timer, "checkpoint");
     // Rank 0 writes the state: the contact sums of the interval go there.
-    if (contact_history)
-      contact_history->gather_sums();
+    postprocessor->prepare_checkpoint();
     // The state is that of a run starting here.
     const unsigned int offset = step_offset;
     start_time                = time.get_current_time();
     next_step_size            = time.get_next_step_size();
     step_offset               = step;
-    checkpoints->write(step,
-                       fingerprint(),
-                       grid,
-                       particle_handler,
-                       [this](boost::archive::binary_oarchive &archive) {
-                         const std::uintmax_t energy_length =
-                           energy_history->length();
-                         const std::uintmax_t grains_length =
-                           grain_history->length();
-                         const std::uintmax_t walls_length =
-                           reaction_history->length();
-                         const std::uintmax_t contacts_length =
-                           contact_history ? contact_history->length() : 0;
-                         archive << energy_length << grains_length
-                                 << walls_length << contacts_length << *this
-                                 << *energy_history << *output_writer
-                                 << *grain_history << *reaction_history;
-                         if (contact_history)
-                           archive << *contact_history;
-                       });
+    checkpoints->write(
+      step,
+      CheckpointManager<dim>::fingerprint(parameters, grains),
+      grid,
+      particle_handler,
+      [this](boost::archive::binary_oarchive &archive) {
+        const typename Postprocessor<dim>::HistoryLengths lengths =
+          postprocessor->get_lengths();
+        archive << lengths.energy << lengths.grains << lengths.walls
+                << lengths.contacts << *this;
+        postprocessor->serialize(archive, 0);
+      });
     step_offset = offset;
     schedule.checkpoint_written();
     last_checkpoint_step = step;
@@ -678,45 +492,6 @@ namespace grainmpm
 
 
   template <int dim>
-  std::string
-  Simulator<dim>::fingerprint() const
-  {
-    std::ostringstream out;
-    out << std::setprecision(17) << "dimension: " << dim << '\n'
-        << "grid: " << parameters.grid.lower_corner << " to "
-        << parameters.grid.upper_corner << ", cells";
-    for (const unsigned int n : parameters.grid.n_cells)
-      out << ' ' << n;
-    out << '\n' << "materials: " << parameters.materials.size() << '\n';
-    for (const auto &material : parameters.materials)
-      {
-        out << "material " << material.name << ": "
-            << material.constitutive_model_text << ", density "
-            << material.density << ", Young's modulus "
-            << material.youngs_modulus << ", Poisson's ratio "
-            << material.poissons_ratio;
-        if (material.constitutive_model == ConstitutiveModelType::von_mises)
-          out << ", yield stress " << material.yield_stress
-              << ", hardening modulus " << material.hardening_modulus;
-        out << '\n';
-      }
-    out << "grains: " << grains.size() << '\n';
-    types::particle_index n_points = 0;
-    for (unsigned int g = 0; g < grains.size(); ++g)
-      {
-        out << "grain " << g + 1 << ": "
-            << parameters.materials[grains[g].material].name << ", "
-            << (grains[g].rigid ? "rigid" : "deformable") << ", "
-            << grains[g].n_particles << " material points\n";
-        n_points += grains[g].n_particles;
-      }
-    out << "material points: " << n_points << '\n';
-    return out.str();
-  }
-
-
-
-  template <int dim>
   void
   Simulator<dim>::print_summary(const unsigned int n_steps, const double time)
   {
@@ -740,18 +515,32 @@ namespace grainmpm
                     largest_plastic_strain,
                     time_step_controller->smallest_step_tried());
 
-    // Peak resident memory (machine-dependent, so not in test mode).
+    std::vector<SummaryRow> rows =
+      summary.rows(n_steps,
+                   time,
+                   n_lost_total,
+                   n_points,
+                   largest_plastic_strain,
+                   time_step_controller->smallest_step_tried());
+
+    // Peak resident memory and wall times (machine-dependent, so not in
+    // test mode).
     if (!parameters.output.test_mode)
       {
         Utilities::System::MemoryStats memory;
         Utilities::System::get_memory_stats(memory);
-        const double peak = memory.VmHWM / 1024.; // MiB
-        pcout << "  peak memory: " << Utilities::MPI::sum(peak, communicator)
-              << " MiB summed over "
+        const double peak     = memory.VmHWM / 1024.; // MiB
+        const double peak_sum = Utilities::MPI::sum(peak, communicator);
+        const double peak_max = Utilities::MPI::max(peak, communicator);
+        pcout << "  peak memory: " << peak_sum << " MiB summed over "
               << Utilities::MPI::n_mpi_processes(communicator)
-              << " ranks, largest rank "
-              << Utilities::MPI::max(peak, communicator) << " MiB" << std::endl;
+              << " ranks, largest rank " << peak_max << " MiB" << std::endl;
+        append_measured_rows(
+          rows, wall_clock.wall_time(), timer, peak_sum, peak_max);
       }
+    write_summary_file(parameters.output.directory + "/summary.csv",
+                       rows,
+                       communicator);
   }
 
 

@@ -25,9 +25,19 @@ run() {
   (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
 }
 
-# value NAME PATTERN: the number after PATTERN in the summary.
-value() {
-  grep -F "$2" "$work/$1.out" | head -1 | sed 's/.*[:=] *//; s/,.*//; s/ .*//'
+# shellcheck source=summary.sh
+source benchmarks/common/summary.sh
+
+# exact NAME QUANTITY: QUANTITY of the run NAME's summary.csv as written
+# (doc/output.md), e.g. exact NAME steps.
+exact() {
+  summary_value "$work/$1/summary.csv" "$2"
+}
+
+# figure NAME QUANTITY: the same to six significant digits, as the screen
+# summary prints it, e.g. figure NAME total_energy_end.
+figure() {
+  summary_value "$work/$1/summary.csv" "$2" "%.6g"
 }
 
 # speeds NAME: |v_x| of grain 1 in its first five rebound flights: the
@@ -42,11 +52,4 @@ speeds() {
         m = count[k]; for (i = 1; i <= m; ++i) a[i] = speed[k, i];
         for (i = 1; i <= m; ++i) for (j = i + 1; j <= m; ++j) if (a[j] < a[i]) { x = a[i]; a[i] = a[j]; a[j] = x }
         printf "%s%.3f", (printed > 0 ? " " : ""), a[int((m + 1) / 2)]; ++printed } }' "$work/$1/grains.csv"
-}
-
-# ledger_entry NAME KEY: the number after "KEY = " in the summary's energy
-# ledger line (KEY: plastic work, friction work, boundary work, transfers,
-# balance residual).
-ledger_entry() {
-  grep -F "energy ledger" "$work/$1.out" | sed "s/.*$2 = //; s/[, ].*//"
 }

@@ -9,12 +9,8 @@
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/postprocess/checkpoint_manager.h>
-#include <grainmpm/postprocess/contact_history.h>
-#include <grainmpm/postprocess/energy_history.h>
-#include <grainmpm/postprocess/grain_history.h>
 #include <grainmpm/postprocess/output_schedule.h>
-#include <grainmpm/postprocess/output_writer.h>
-#include <grainmpm/postprocess/reaction_history.h>
+#include <grainmpm/postprocess/postprocessor.h>
 #include <grainmpm/postprocess/run_summary.h>
 #include <grainmpm/time_integration/time_integrator.h>
 #include <grainmpm/time_integration/time_step_controller.h>
@@ -82,23 +78,28 @@ namespace grainmpm
 
   private:
     /**
-     * Record the inputs in the output directory before anything can fail:
-     * original.prm (the input file @p input_file with its included files
-     * expanded; original.json or .xml for those formats), parameters.prm
-     * and parameters.json (every value of @p prm) and, for a random
-     * packing, packing.csv. Rank 0 writes; an error stops every rank.
-     */
-    void
-    record_inputs(const ParameterHandler &prm,
-                  const std::string      &input_file) const;
-
-    /**
      * Grains and material points (or those of the checkpoint the run
      * resumes from), the time integrator, the writers; the first output
      * of a new run. Sets where the time loop starts.
      */
     void
     setup();
+
+    /**
+     * The header (versions, dimension, ranks; not in test mode) and the
+     * line with the numbers of cells, grains and material points, unless
+     * quiet.
+     */
+    void
+    print_header();
+
+    /**
+     * A run that does not resume: the initial energies and the momentum
+     * scale into the summary, the first row of energy.csv, the output at
+     * t = 0 and the first time step.
+     */
+    void
+    start_new_run();
 
     /**
      * One step from the current time of @p time, retried with smaller
@@ -157,14 +158,6 @@ namespace grainmpm
     void
     balance_load();
 
-    /**
-     * What a checkpoint must have been written by to be resumed by this
-     * run: the dimension, the grid, the materials' models, the grains with
-     * their materials and material points at creation. One item per line.
-     */
-    std::string
-    fingerprint() const;
-
     /** The final summary after @p n_steps steps to @p time. */
     void
     print_summary(const unsigned int n_steps, const double time);
@@ -192,18 +185,12 @@ namespace grainmpm
     Particles::ParticleHandler<dim>                      particle_handler;
     std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
     std::vector<GrainInfo<dim>>                          grains;
-    /** Per grain: whether it is rigid. */
-    std::vector<bool>                       grain_is_rigid;
-    std::unique_ptr<TimeIntegrator<dim>>    stepper;
-    std::unique_ptr<TimeStepController>     time_step_controller;
-    OutputSchedule                          schedule;
-    std::unique_ptr<CheckpointManager<dim>> checkpoints;
-    std::unique_ptr<OutputWriter<dim>>      output_writer;
-    std::unique_ptr<EnergyHistory<dim>>     energy_history;
-    std::unique_ptr<GrainHistory<dim>>      grain_history;
-    std::unique_ptr<ReactionHistory<dim>>   reaction_history;
-    std::unique_ptr<ContactHistory<dim>>    contact_history;
-    RunSummary<dim>                         summary;
+    std::unique_ptr<TimeIntegrator<dim>>                 stepper;
+    std::unique_ptr<TimeStepController>                  time_step_controller;
+    OutputSchedule                                       schedule;
+    std::unique_ptr<CheckpointManager<dim>>              checkpoints;
+    std::unique_ptr<Postprocessor<dim>>                  postprocessor;
+    RunSummary<dim>                                      summary;
     /**
      * The timing table, printed when the run ends. Made after the members
      * whose construction can fail, and silenced when anything fails before

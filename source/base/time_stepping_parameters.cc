@@ -316,6 +316,14 @@ namespace grainmpm
       "the status chatter; the constraint may keep a pull of that speed "
       "times the slot mass. Zero: no hysteresis. Dimensionless.",
       Patterns::Double(0., 1e-2));
+    prm.add_parameter(
+      "Verbose",
+      verbose,
+      "Print one line per Newton iteration on the screen (first MPI rank): "
+      "the iteration, ||R|| / F_scale after it (iteration 0: at the initial "
+      "guess), the forcing term eta, the Krylov iterations, the line "
+      "search halvings and the contact status changes so far in the step; "
+      "and one line with the result of each Newton solve.");
     prm.leave_subsection();
   }
 

@@ -2,8 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/materials/constitutive_model.h>
-#include <grainmpm/materials/linear_elastic.h>
-#include <grainmpm/materials/von_mises.h>
+#include <grainmpm/materials/constitutive_model_factory.h>
 
 namespace grainmpm
 {
@@ -33,23 +32,7 @@ namespace grainmpm
   create_constitutive_model(const MaterialParameters &material,
                             const TwoDimensionalModel model)
   {
-    switch (material.constitutive_model)
-      {
-        case ConstitutiveModelType::linear_elastic:
-          return std::make_unique<LinearElastic<dim>>(material.density,
-                                                      material.youngs_modulus,
-                                                      material.poissons_ratio,
-                                                      model);
-        case ConstitutiveModelType::von_mises:
-          return std::make_unique<VonMises<dim>>(material.density,
-                                                 material.youngs_modulus,
-                                                 material.poissons_ratio,
-                                                 material.yield_stress,
-                                                 material.hardening_modulus,
-                                                 model);
-      }
-    Assert(false, ExcInternalError());
-    return nullptr;
+    return ConstitutiveModelFactory::create<dim>(material, model);
   }
 
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/materials/constitutive_model_factory.h>
 #include <grainmpm/materials/linear_elastic.h>
 
 #include <cmath>
@@ -29,6 +30,17 @@ namespace grainmpm
       }
     dilatational_wave_speed = std::sqrt((lambda + 2. * mu) / density);
   }
+
+
+
+  template <int dim>
+  LinearElastic<dim>::LinearElastic(const MaterialParameters &material,
+                                    const TwoDimensionalModel model)
+    : LinearElastic(material.density,
+                    material.youngs_modulus,
+                    material.poissons_ratio,
+                    model)
+  {}
 
 
 
@@ -164,4 +176,9 @@ namespace grainmpm
 
   template class LinearElastic<2>;
   template class LinearElastic<3>;
+
+  GRAINMPM_REGISTER_CONSTITUTIVE_MODEL(LinearElastic,
+                                       ConstitutiveModelParameters,
+                                       "linear elastic",
+                                       "hypoelastic, Jaumann-rotated")
 } // namespace grainmpm

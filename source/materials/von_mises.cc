@@ -1,9 +1,15 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/materials/constitutive_model_factory.h>
 #include <grainmpm/materials/von_mises.h>
 
+#include <deal.II/base/patterns.h>
+
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace grainmpm
 {
@@ -17,6 +23,82 @@ namespace grainmpm
       return std::sqrt(1.5 * (s * s));
     }
   } // namespace
+
+
+
+  void
+  VonMisesParameters::declare(ParameterHandler &prm)
+  {
+    prm.add_parameter("Yield stress",
+                      yield_stress,
+                      "von Mises: the initial uniaxial yield stress sigma_y "
+                      "(the von Mises stress q = sqrt(3/2 s:s) at first "
+                      "yield). Must be positive for 'von Mises'; ignored "
+                      "otherwise. Units: stress.",
+                      Patterns::Double(0.));
+    prm.add_parameter("Hardening modulus",
+                      hardening_modulus,
+                      "von Mises: the plastic modulus H of linear isotropic "
+                      "hardening, sigma_Y = sigma_y + H epsilon_p (from a "
+                      "bilinear curve with tangent modulus E_t: "
+                      "H = E E_t / (E - E_t)); 0 is perfect plasticity. "
+                      "Units: stress.",
+                      Patterns::Double(0.));
+  }
+
+
+
+  void
+  VonMisesParameters::check(const std::string &prefix) const
+  {
+    if (!(yield_stress > 0.))
+      throw InputError(prefix + "Yield stress",
+                       "must be positive for the 'von Mises' model, but is " +
+                         std::to_string(yield_stress) + ".");
+  }
+
+
+
+  std::string
+  VonMisesParameters::check_initial_stress(const SymmetricTensor<2, 3> &stress,
+                                           const std::string           &where,
+                                           const std::string &prefix) const
+  {
+    const double equivalent = equivalent_stress(stress);
+    if (!(equivalent > yield_stress * (1. + 1e-12)))
+      return "";
+    std::ostringstream message;
+    message << "its von Mises stress " << equivalent << where
+            << " is above the yield stress " << yield_stress << " of " << prefix
+            << "Yield stress: an initial stress must be admissible.";
+    return message.str();
+  }
+
+
+
+  std::string
+  VonMisesParameters::fingerprint() const
+  {
+    std::ostringstream out;
+    out << std::setprecision(17) << ", yield stress " << yield_stress
+        << ", hardening modulus " << hardening_modulus;
+    return out.str();
+  }
+
+
+
+  template <int dim>
+  VonMises<dim>::VonMises(const MaterialParameters &material,
+                          const TwoDimensionalModel model)
+    : VonMises(material.density,
+               material.youngs_modulus,
+               material.poissons_ratio,
+               material.get_model_parameters<VonMisesParameters>("von Mises")
+                 .yield_stress,
+               material.get_model_parameters<VonMisesParameters>("von Mises")
+                 .hardening_modulus,
+               model)
+  {}
 
 
 
@@ -152,4 +234,11 @@ namespace grainmpm
 
   template class VonMises<2>;
   template class VonMises<3>;
+
+  GRAINMPM_REGISTER_CONSTITUTIVE_MODEL(
+    VonMises,
+    VonMisesParameters,
+    "von Mises",
+    "the same elasticity with J2 plasticity and linear isotropic hardening, "
+    "radial return; needs Yield stress")
 } // namespace grainmpm

@@ -112,23 +112,55 @@ namespace grainmpm
                        "the grain.";
             return InputError(entry, message.str()).what();
           }
-      if (material.constitutive_model == ConstitutiveModelType::von_mises)
-        {
-          const SymmetricTensor<2, 3> s          = deviator(stress);
-          const double                equivalent = std::sqrt(1.5 * (s * s));
-          if (equivalent > material.yield_stress * (1. + 1e-12))
-            {
-              message << "its von Mises stress " << equivalent
-                      << " at the point (" << point
-                      << ") is above the yield stress " << material.yield_stress
-                      << " of Materials/" << material.name
-                      << "/Yield stress: an initial stress must be "
-                         "admissible.";
-              return InputError(entry, message.str()).what();
-            }
-        }
+      // What the material's model admits (a von Mises material: at most
+      // the yield stress).
+      std::ostringstream where;
+      where << " at the point (" << point << ")";
+      const std::string inadmissible =
+        material.get_model_parameters().check_initial_stress(
+          stress, where.str(), "Materials/" + material.name + "/");
+      if (!inadmissible.empty())
+        return InputError(entry, inadmissible).what();
       Layout::set_stress(stress, make_array_view(properties));
       return "";
+    }
+  } // namespace
+
+
+
+  namespace
+  {
+    /**
+     * The locally owned cells of the box by their (i,j,k) index (the end
+     * iterator for the others), so that each grain visits only the cells
+     * of its bounding box.
+     */
+    template <int dim>
+    std::vector<typename Triangulation<dim>::active_cell_iterator>
+    cells_by_index(const BackgroundGrid<dim>       &grid,
+                   const std::vector<unsigned int> &n_cells)
+    {
+      const Tensor<1, dim> h             = grid.cell_size();
+      unsigned int         n_total_cells = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        n_total_cells *= n_cells[d];
+      std::vector<typename Triangulation<dim>::active_cell_iterator> cells(
+        n_total_cells, grid.get_triangulation().end());
+      for (const auto &cell : grid.get_triangulation().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const Point<dim> centre = cell->center();
+            unsigned int     index = 0, stride = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                index +=
+                  stride * static_cast<unsigned int>(std::floor(
+                             (centre[d] - grid.lower_corner()[d]) / h[d]));
+                stride *= n_cells[d];
+              }
+            cells[index] = cell;
+          }
+      return cells;
     }
   } // namespace
 
@@ -142,116 +174,63 @@ namespace grainmpm
 
 
   template <int dim>
-  std::vector<GrainInfo<dim>>
-  GrainGenerator<dim>::generate(
-    const BackgroundGrid<dim>       &grid,
-    Particles::ParticleHandler<dim> &particle_handler) const
+  std::shared_ptr<FunctionParser<dim>>
+  GrainGenerator<dim>::parse_initial_stress(const unsigned int g,
+                                            std::string       &entry) const
   {
-    using Layout                = MaterialPointLayout<dim>;
-    const auto        &grains   = parameters.grains;
-    const unsigned int n_grains = grains.size();
-    const unsigned int per_direction =
-      parameters.material_points.particles_per_cell;
-    const unsigned int   per_cell = Utilities::fixed_power<dim>(per_direction);
-    const Tensor<1, dim> h        = grid.cell_size();
-    double               cell_volume = 1.;
-    for (unsigned int d = 0; d < dim; ++d)
-      cell_volume *= h[d];
-
-    // Cells by their (i,j,k) index in the box, so that each grain visits
-    // only the cells of its bounding box.
-    const auto  &n_cells       = parameters.grid.n_cells;
-    unsigned int n_total_cells = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      n_total_cells *= n_cells[d];
-    std::vector<typename Triangulation<dim>::active_cell_iterator> cells(
-      n_total_cells, grid.get_triangulation().end());
-    for (const auto &cell : grid.get_triangulation().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const Point<dim> centre = cell->center();
-          unsigned int     index = 0, stride = 1;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              index += stride * static_cast<unsigned int>(std::floor(
-                                  (centre[d] - grid.lower_corner()[d]) / h[d]));
-              stride *= n_cells[d];
-            }
-          cells[index] = cell;
-        }
-
-    std::vector<GrainInfo<dim>>                       info(n_grains);
-    std::vector<std::shared_ptr<FunctionParser<dim>>> initial_velocities(
-      n_grains);
-    // The grain's initial stress, else its material's, else none; the
-    // entry that gave it for the messages.
-    std::vector<std::shared_ptr<FunctionParser<dim>>> initial_stresses(
-      n_grains);
-    std::vector<std::string> stress_entries(n_grains);
-    const auto               parse_initial_stress = [&](const unsigned int g) {
-      const GrainParameters<dim> &grain = grains[g];
-      const MaterialParameters   &material =
-        parameters.materials[grain.material_index];
-      const bool         own = !grain.initial_stress.empty();
-      const std::string &text =
-        own ? grain.initial_stress : material.initial_stress;
-      if (text.empty())
-        return std::shared_ptr<FunctionParser<dim>>();
-      stress_entries[g] = (own ? grain.source : "Materials/" + material.name) +
-                          "/Initial stress = " + text;
-      if (grain.rigid)
-        {
-          if (own)
-            throw InputError(stress_entries[g],
-                             "a rigid grain carries no stress: remove the "
-                                           "entry or set Rigid = false.");
-          return std::shared_ptr<FunctionParser<dim>>();
-        }
-      const unsigned int n = Utilities::split_string_list(text, ';').size();
-      if (!(dim == 2 ? (n == 3 || n == 4) : n == 6))
-        throw InputError(stress_entries[g],
-                         std::string("needs ") +
-                           (dim == 2 ? "3 expressions (s_xx; s_yy; s_xy) or "
-                                                     "4 (s_xx; s_yy; s_xy; s_zz)" :
-                                                     "6 expressions (s_xx; s_yy; s_zz; "
-                                                     "s_xy; s_xz; s_yz)") +
-                           " separated by ';', not " + std::to_string(n) + ".");
-      return parse_vector_function<dim>(
-        text,
-        false,
-        stress_entries[g].substr(0, stress_entries[g].find(" = ")),
-        n);
-    };
-    for (unsigned int g = 0; g < n_grains; ++g)
+    const GrainParameters<dim> &grain = parameters.grains[g];
+    const MaterialParameters   &material =
+      parameters.materials[grain.material_index];
+    const bool         own = !grain.initial_stress.empty();
+    const std::string &text =
+      own ? grain.initial_stress : material.initial_stress;
+    if (text.empty())
+      return std::shared_ptr<FunctionParser<dim>>();
+    entry = (own ? grain.source : "Materials/" + material.name) +
+            "/Initial stress = " + text;
+    if (grain.rigid)
       {
-        info[g].material = grains[g].material_index;
-        info[g].rigid    = grains[g].rigid;
-        initial_velocities[g] =
-          parse_vector_function<dim>(grains[g].initial_velocity,
-                                     false,
-                                     grains[g].source + "/Initial velocity");
-        if (grains[g].rigid)
-          info[g].prescribed_velocity =
-            parse_vector_function<dim>(grains[g].prescribed_velocity,
-                                       true,
-                                       grains[g].source +
-                                         "/Prescribed velocity");
-        initial_stresses[g] = parse_initial_stress(g);
+        if (own)
+          throw InputError(entry,
+                           "a rigid grain carries no stress: remove the "
+                           "entry or set Rigid = false.");
+        return std::shared_ptr<FunctionParser<dim>>();
       }
+    const unsigned int n = Utilities::split_string_list(text, ';').size();
+    if (!(dim == 2 ? (n == 3 || n == 4) : n == 6))
+      throw InputError(entry,
+                       std::string("needs ") +
+                         (dim == 2 ? "3 expressions (s_xx; s_yy; s_xy) or "
+                                     "4 (s_xx; s_yy; s_xy; s_zz)" :
+                                     "6 expressions (s_xx; s_yy; s_zz; "
+                                     "s_xy; s_xz; s_yz)") +
+                         " separated by ';', not " + std::to_string(n) + ".");
+    return parse_vector_function<dim>(text,
+                                      false,
+                                      entry.substr(0, entry.find(" = ")),
+                                      n);
+  }
 
-    // First pass: which grain owns each candidate point. A point claimed by
-    // two grains means the grains overlap.
-    struct Candidate
-    {
-      unsigned int cell;
-      unsigned int sub_point;
-      unsigned int grain;
-    };
+
+
+  template <int dim>
+  std::vector<typename GrainGenerator<dim>::Candidate>
+  GrainGenerator<dim>::find_candidates(
+    const BackgroundGrid<dim>                                            &grid,
+    const std::vector<typename Triangulation<dim>::active_cell_iterator> &cells,
+    std::string &overlap) const
+  {
+    const auto          &grains  = parameters.grains;
+    const auto          &n_cells = parameters.grid.n_cells;
+    const Tensor<1, dim> h       = grid.cell_size();
+    const unsigned int   per_direction =
+      parameters.material_points.particles_per_cell;
+    const unsigned int per_cell = Utilities::fixed_power<dim>(per_direction);
+
     std::vector<Candidate>    candidates;
-    std::string               overlap; // seen on this rank's cells
-    std::vector<unsigned int> owner(std::size_t(n_total_cells) * per_cell,
+    std::vector<unsigned int> owner(cells.size() * per_cell,
                                     numbers::invalid_unsigned_int);
-    for (unsigned int g = 0; g < n_grains; ++g)
+    for (unsigned int g = 0; g < grains.size(); ++g)
       {
         const auto   box      = bounding_box(grains[g]);
         unsigned int first[3] = {0, 0, 0}, last[3] = {0, 0, 0};
@@ -305,6 +284,111 @@ namespace grainmpm
                   }
               }
       }
+    return candidates;
+  }
+
+
+
+  template <int dim>
+  std::string
+  GrainGenerator<dim>::point_properties(const unsigned int    g,
+                                        const GrainFunctions &functions,
+                                        const Point<dim>     &point,
+                                        const double          volume,
+                                        std::vector<double>  &properties) const
+  {
+    using Layout                      = MaterialPointLayout<dim>;
+    const GrainParameters<dim> &grain = parameters.grains[g];
+    const MaterialParameters   &material =
+      parameters.materials[grain.material_index];
+    std::fill(properties.begin(), properties.end(), 0.);
+    properties[Layout::mass]           = material.density * volume;
+    properties[Layout::volume]         = volume;
+    properties[Layout::initial_volume] = volume;
+    properties[Layout::grain]          = g;
+
+    std::string    error;
+    Vector<double> velocity(dim);
+    functions.initial_velocity->vector_value(point, velocity);
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!std::isfinite(velocity[d]) && error.empty())
+        {
+          std::ostringstream message;
+          message << "component " << d + 1 << " is " << velocity[d]
+                  << " at the point (" << point
+                  << "): the initial velocity must be finite everywhere "
+                     "in the grain.";
+          error = InputError(grain.source +
+                               "/Initial velocity = " + grain.initial_velocity,
+                             message.str())
+                    .what();
+        }
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        properties[Layout::velocity + d]                       = velocity[d];
+        properties[Layout::deformation_gradient + dim * d + d] = 1.;
+      }
+    if (functions.initial_stress)
+      {
+        const std::string stress_error =
+          initial_stress(*functions.initial_stress,
+                         point,
+                         material,
+                         parameters.physics.two_dimensional_model ==
+                           TwoDimensionalModel::plane_strain,
+                         functions.stress_entry,
+                         properties);
+        if (error.empty())
+          error = stress_error;
+      }
+    return error;
+  }
+
+
+
+  template <int dim>
+  std::vector<GrainInfo<dim>>
+  GrainGenerator<dim>::generate(
+    const BackgroundGrid<dim>       &grid,
+    Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    const auto        &grains   = parameters.grains;
+    const unsigned int n_grains = grains.size();
+    const unsigned int per_direction =
+      parameters.material_points.particles_per_cell;
+    const unsigned int   per_cell = Utilities::fixed_power<dim>(per_direction);
+    const Tensor<1, dim> h        = grid.cell_size();
+    double               cell_volume = 1.;
+    for (unsigned int d = 0; d < dim; ++d)
+      cell_volume *= h[d];
+    const double volume = cell_volume / per_cell;
+
+    std::vector<GrainInfo<dim>> info(n_grains);
+    std::vector<GrainFunctions> functions(n_grains);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      {
+        info[g].material = grains[g].material_index;
+        info[g].rigid    = grains[g].rigid;
+        functions[g].initial_velocity =
+          parse_vector_function<dim>(grains[g].initial_velocity,
+                                     false,
+                                     grains[g].source + "/Initial velocity");
+        if (grains[g].rigid)
+          info[g].prescribed_velocity =
+            parse_vector_function<dim>(grains[g].prescribed_velocity,
+                                       true,
+                                       grains[g].source +
+                                         "/Prescribed velocity");
+        functions[g].initial_stress =
+          parse_initial_stress(g, functions[g].stress_entry);
+      }
+
+    // Which grain owns each candidate point; a point claimed by two grains
+    // means the grains overlap.
+    const auto  cells = cells_by_index(grid, parameters.grid.n_cells);
+    std::string overlap; // seen on this rank's cells
+    const std::vector<Candidate> candidates =
+      find_candidates(grid, cells, overlap);
 
     // Globally unique particle ids: this rank's candidates follow those of
     // the lower ranks.
@@ -313,67 +397,32 @@ namespace grainmpm
     const types::particle_index first_id = sum_over_lower_ranks(
       static_cast<types::particle_index>(candidates.size()), communicator);
 
-    std::vector<double> properties(Layout::n_properties, 0.);
-    Vector<double>      velocity(dim);
+    std::vector<double> properties(MaterialPointLayout<dim>::n_properties, 0.);
     std::string         not_finite; // the first one on this rank
     for (std::size_t c = 0; c < candidates.size(); ++c)
       {
-        const Candidate            &candidate = candidates[c];
-        const auto                 &cell      = cells[candidate.cell];
-        const GrainParameters<dim> &grain     = grains[candidate.grain];
-        const double                density =
-          parameters.materials[grain.material_index].density;
-
-        Point<dim>   reference, point;
-        unsigned int rest = candidate.sub_point;
+        const Candidate &candidate = candidates[c];
+        const auto      &cell      = cells[candidate.cell];
+        Point<dim>       reference, point;
+        unsigned int     rest = candidate.sub_point;
         for (unsigned int d = 0; d < dim; ++d)
           {
             reference[d] = ((rest % per_direction) + 0.5) / per_direction;
             rest /= per_direction;
             point[d] = cell->vertex(0)[d] + h[d] * reference[d];
           }
-
-        std::fill(properties.begin(), properties.end(), 0.);
-        const double volume                = cell_volume / per_cell;
-        properties[Layout::mass]           = density * volume;
-        properties[Layout::volume]         = volume;
-        properties[Layout::initial_volume] = volume;
-        properties[Layout::grain]          = candidate.grain;
-        initial_velocities[candidate.grain]->vector_value(point, velocity);
-        for (unsigned int d = 0; d < dim; ++d)
-          if (!std::isfinite(velocity[d]) && not_finite.empty())
-            {
-              std::ostringstream message;
-              message << "component " << d + 1 << " is " << velocity[d]
-                      << " at the point (" << point
-                      << "): the initial velocity must be finite everywhere "
-                         "in the grain.";
-              not_finite = InputError(grain.source + "/Initial velocity = " +
-                                        grain.initial_velocity,
-                                      message.str())
-                             .what();
-            }
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            properties[Layout::velocity + d] = velocity[d];
-            properties[Layout::deformation_gradient + dim * d + d] = 1.;
-          }
-        if (initial_stresses[candidate.grain])
-          {
-            const std::string error =
-              initial_stress(*initial_stresses[candidate.grain],
-                             point,
-                             parameters.materials[grain.material_index],
-                             parameters.physics.two_dimensional_model ==
-                               TwoDimensionalModel::plane_strain,
-                             stress_entries[candidate.grain],
-                             properties);
-            if (!error.empty() && not_finite.empty())
-              not_finite = error;
-          }
+        const std::string error = point_properties(candidate.grain,
+                                                   functions[candidate.grain],
+                                                   point,
+                                                   volume,
+                                                   properties);
+        if (!error.empty() && not_finite.empty())
+          not_finite = error;
         particle_handler.insert_particle(
           point, reference, first_id + c, cell, make_array_view(properties));
-        info[candidate.grain].mass += density * volume;
+        info[candidate.grain].mass +=
+          parameters.materials[grains[candidate.grain].material_index].density *
+          volume;
         info[candidate.grain].n_particles += 1;
       }
     throw_on_all_ranks(not_finite, communicator);

@@ -135,27 +135,26 @@ namespace grainmpm
                           fixed_size,
                           "its header needs " +
                             std::to_string(n_header * sizeof(unsigned int)));
-      const std::uintmax_t header_bytes  = n_header * sizeof(unsigned int);
-      const std::uintmax_t cell_bytes    = header.back();
-      const std::uintmax_t written_cells = (fixed_size - header_bytes) /
-                                           cell_bytes;
+      const std::uintmax_t header_bytes = n_header * sizeof(unsigned int);
+      const std::uintmax_t cell_bytes   = header.back();
+      const std::uintmax_t written_cells =
+        (fixed_size - header_bytes) / cell_bytes;
       if (header_bytes + written_cells * cell_bytes != fixed_size ||
           (n_cells > 0 && written_cells != n_cells))
-        return incomplete("grid_fixed.data",
-                          fixed_size,
-                          std::to_string(n_cells > 0 ? n_cells :
-                                                       written_cells + 1) +
-                            " cells need " +
-                            std::to_string(header_bytes +
-                                           (n_cells > 0 ? n_cells :
-                                                          written_cells + 1) *
-                                             cell_bytes));
+        return incomplete(
+          "grid_fixed.data",
+          fixed_size,
+          std::to_string(n_cells > 0 ? n_cells : written_cells + 1) +
+            " cells need " +
+            std::to_string(header_bytes +
+                           (n_cells > 0 ? n_cells : written_cells + 1) *
+                             cell_bytes));
       if (n_variable == 0)
         return "";
 
       // grid_variable.data: the size of every cell's data, then the data.
-      const std::string    variable_name = checkpoint + "/grid_variable.data";
-      const std::uintmax_t variable_size = file_size(variable_name);
+      const std::string      variable_name = checkpoint + "/grid_variable.data";
+      const std::uintmax_t   variable_size = file_size(variable_name);
       const std::vector<int> sizes =
         read_values<int>(variable_name, written_cells);
       if (sizes.size() < written_cells)

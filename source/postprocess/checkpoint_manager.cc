@@ -337,6 +337,42 @@ namespace grainmpm
 
 
 
+  template <int dim>
+  std::string
+  CheckpointManager<dim>::fingerprint(const Parameters<dim> &parameters,
+                                      const std::vector<GrainInfo<dim>> &grains)
+  {
+    std::ostringstream out;
+    out << std::setprecision(17) << "dimension: " << dim << '\n'
+        << "grid: " << parameters.grid.lower_corner << " to "
+        << parameters.grid.upper_corner << ", cells";
+    for (const unsigned int n : parameters.grid.n_cells)
+      out << ' ' << n;
+    out << '\n' << "materials: " << parameters.materials.size() << '\n';
+    for (const auto &material : parameters.materials)
+      {
+        out << "material " << material.name << ": "
+            << material.constitutive_model << ", density " << material.density
+            << ", Young's modulus " << material.youngs_modulus
+            << ", Poisson's ratio " << material.poissons_ratio;
+        out << material.get_model_parameters().fingerprint() << '\n';
+      }
+    out << "grains: " << grains.size() << '\n';
+    types::particle_index n_points = 0;
+    for (unsigned int g = 0; g < grains.size(); ++g)
+      {
+        out << "grain " << g + 1 << ": "
+            << parameters.materials[grains[g].material].name << ", "
+            << (grains[g].rigid ? "rigid" : "deformable") << ", "
+            << grains[g].n_particles << " material points\n";
+        n_points += grains[g].n_particles;
+      }
+    out << "material points: " << n_points << '\n';
+    return out.str();
+  }
+
+
+
   template class CheckpointManager<2>;
   template class CheckpointManager<3>;
 } // namespace grainmpm

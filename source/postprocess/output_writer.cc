@@ -4,6 +4,7 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/postprocess/output_writer.h>
+#include <grainmpm/postprocess/particle_fields.h>
 
 #include <deal.II/base/data_out_base.h>
 
@@ -21,31 +22,6 @@
 
 namespace grainmpm
 {
-  template <int dim>
-  double
-  principal_stress_difference(const SymmetricTensor<2, 3> &stress)
-  {
-    if (dim == 2)
-      {
-        const double difference = stress[0][0] - stress[1][1];
-        return std::sqrt(difference * difference +
-                         4. * stress[0][1] * stress[0][1]);
-      }
-    const auto principal = eigenvalues(stress); // descending order
-    return principal[0] - principal[2];
-  }
-
-
-
-  double
-  von_mises_stress(const SymmetricTensor<2, 3> &stress)
-  {
-    const SymmetricTensor<2, 3> deviatoric = deviator(stress);
-    return std::sqrt(1.5 * (deviatoric * deviatoric));
-  }
-
-
-
   namespace
   {
     /**
@@ -61,30 +37,19 @@ namespace grainmpm
             const std::vector<double>             &fringe_factors)
       {
         using Layout = MaterialPointLayout<dim>;
-        names        = {"grain", "id"};
-        for (unsigned int d = 0; d < dim; ++d)
-          names.emplace_back("velocity");
-        for (unsigned int d = 0; d < dim * dim; ++d)
-          names.emplace_back("stress");
-        if (dim == 2)
-          names.emplace_back("stress_zz");
-        for (const char *name : {"principal_stress_difference",
-                                 "fringe_order",
-                                 "von_mises_stress",
-                                 "volume",
-                                 "plastic_strain"})
-          names.emplace_back(name);
+        const std::vector<ParticleField<dim>> &fields = particle_fields<dim>();
+        names.clear();
         ranges.clear();
-        ranges.emplace_back(
-          2,
-          2 + dim - 1,
-          "velocity",
-          DataComponentInterpretation::component_is_part_of_vector);
-        ranges.emplace_back(
-          2 + dim,
-          2 + dim + dim * dim - 1,
-          "stress",
-          DataComponentInterpretation::component_is_part_of_tensor);
+        for (const ParticleField<dim> &field : fields)
+          {
+            if (field.n_components > 1)
+              ranges.emplace_back(names.size(),
+                                  names.size() + field.n_components - 1,
+                                  field.name,
+                                  field.interpretation);
+            for (unsigned int c = 0; c < field.n_components; ++c)
+              names.push_back(field.name);
+          }
 
         patches.clear();
         patches.resize(particle_handler.n_locally_owned_particles());
@@ -95,25 +60,21 @@ namespace grainmpm
             patch.vertices[0] = particle.get_location();
             patch.patch_index = i;
             patch.data.reinit(names.size(), 1);
-            const auto   properties = particle.get_properties();
-            const auto   stress     = Layout::get_stress(properties);
-            unsigned int c          = 0;
-            patch.data(c++, 0)      = Layout::get_grain(properties) + 1;
-            patch.data(c++, 0)      = particle.get_id();
-            for (unsigned int d = 0; d < dim; ++d)
-              patch.data(c++, 0) = properties[Layout::velocity + d];
-            for (unsigned int a = 0; a < dim; ++a)
-              for (unsigned int b = 0; b < dim; ++b)
-                patch.data(c++, 0) = stress[a][b];
-            if (dim == 2)
-              patch.data(c++, 0) = stress[2][2];
-            const double difference = principal_stress_difference<dim>(stress);
-            patch.data(c++, 0)      = difference;
-            patch.data(c++, 0) =
-              fringe_factors[Layout::get_grain(properties)] * difference;
-            patch.data(c++, 0) = von_mises_stress(stress);
-            patch.data(c++, 0) = properties[Layout::volume];
-            patch.data(c++, 0) = properties[Layout::plastic_strain];
+            const auto                   properties = particle.get_properties();
+            const MaterialPointView<dim> point      = {
+              properties,
+              particle.get_id(),
+              Layout::get_stress(properties),
+              fringe_factors[Layout::get_grain(properties)]};
+            std::vector<double> values;
+            unsigned int        c = 0;
+            for (const ParticleField<dim> &field : fields)
+              {
+                values.resize(field.n_components);
+                field.evaluate(point, values.data());
+                for (const double value : values)
+                  patch.data(c++, 0) = value;
+              }
             ++i;
           }
       }
@@ -491,10 +452,6 @@ namespace grainmpm
 
 
 
-  template double
-  principal_stress_difference<2>(const SymmetricTensor<2, 3> &);
-  template double
-  principal_stress_difference<3>(const SymmetricTensor<2, 3> &);
   template class OutputWriter<2>;
   template class OutputWriter<3>;
 } // namespace grainmpm

@@ -136,6 +136,50 @@ namespace grainmpm
     {
       return std::isfinite(v.l2_norm());
     }
+
+
+    /** The preconditioner a Krylov solve applies, and what it needs. */
+    struct Preconditioning
+    {
+      NonlinearProblem             &problem;
+      const VectorType             &diagonal;
+      const LinearSolverParameters &linear;
+      const bool                    assembled;
+    };
+
+
+
+    /**
+     * @p solver on J @p dx = @p rhs with the configured preconditioner:
+     * weighted Jacobi with @p jacobi_sweeps sweeps, the problem's
+     * assembled one, or none.
+     */
+    template <typename SolverType>
+    void
+    solve_preconditioned(SolverType                     &solver,
+                         const FiniteDifferenceJacobian &jacobian,
+                         VectorType                     &dx,
+                         const VectorType               &rhs,
+                         const Preconditioning          &preconditioning,
+                         const unsigned int              jacobi_sweeps)
+    {
+      if (preconditioning.linear.probed_jacobi)
+        solver.solve(jacobian,
+                     dx,
+                     rhs,
+                     JacobiPreconditioner(jacobian,
+                                          preconditioning.diagonal,
+                                          preconditioning.linear.jacobi_weight,
+                                          jacobi_sweeps));
+      else if (preconditioning.assembled)
+        solver.solve(jacobian,
+                     dx,
+                     rhs,
+                     AssembledPreconditioner(preconditioning.problem));
+      else
+        solver.solve(jacobian, dx, rhs, PreconditionIdentity());
+    }
+
   } // namespace
 
 
@@ -143,10 +187,12 @@ namespace grainmpm
   NewtonKrylovSolver::NewtonKrylovSolver(
     const NonlinearSolverParameters &nonlinear,
     const LinearSolverParameters    &linear,
-    const double                     velocity_scale)
+    const double                     velocity_scale,
+    const ConditionalOStream        &log)
     : nonlinear(nonlinear)
     , linear(linear)
     , velocity_scale(velocity_scale)
+    , iteration_log(log)
   {}
 
 
@@ -195,234 +241,335 @@ namespace grainmpm
 
 
 
+  NewtonKrylovSolver::IterationState::IterationState(const VectorType &x)
+    : r(x)
+    , trial(x)
+    , trial_r(x)
+    , dx(x)
+    , rhs(x)
+  {}
+
+
+
   NewtonStatistics
   NewtonKrylovSolver::solve(NonlinearProblem &problem, VectorType &x) const
   {
     NewtonStatistics    statistics;
     const unsigned long evaluations_at_start = problem.n_residual_evaluations();
+    IterationState      state(x);
     const auto finish = [&](const bool converged, const std::string &why) {
       statistics.converged = converged;
       statistics.failure   = why;
       statistics.residual_evaluations =
         problem.n_residual_evaluations() - evaluations_at_start;
+      log_result(statistics, state);
       return statistics;
     };
 
-    VectorType r(x), trial(x), trial_r(x), dx(x), rhs(x), diagonal;
+    std::string why = initialize(problem, x, state);
+    if (!why.empty())
+      return finish(false, why);
+    log_iteration(statistics, state);
+    for (unsigned int k = 0;; ++k)
+      {
+        statistics.residual_norm = state.norm / (state.root_n * velocity_scale);
+        if (state.norm <= state.target)
+          return finish(true, "");
+        if (at_iteration_limit(k, state))
+          {
+            std::ostringstream message;
+            message << "Newton did not converge in " << k
+                    << " iterations (||R|| / F_scale = " << std::setprecision(2)
+                    << state.relative_norm() << ", tolerance "
+                    << nonlinear.tolerance << ")";
+            return finish(false, message.str());
+          }
+        update_forcing_term(k, state);
+        why = solve_linear_system(problem, x, state);
+        statistics.linear_iterations += state.linear_iterations;
+        if (why.empty())
+          why = line_search(problem, x, state);
+        if (why.empty())
+          {
+            ++statistics.iterations;
+            why = update_status(problem, x, state, statistics);
+          }
+        if (!why.empty())
+          return finish(false, why);
+        log_iteration(statistics, state);
+      }
+  }
+
+
+
+  std::string
+  NewtonKrylovSolver::initialize(NonlinearProblem &problem,
+                                 const VectorType &x,
+                                 IterationState   &state) const
+  {
     problem.update_linearization(x);
-    problem.residual(x, r);
-    double norm = r.l2_norm();
-    if (!std::isfinite(norm))
-      return finish(false, "the residual of the initial guess is not finite");
+    problem.residual(x, state.r);
+    state.norm = state.r.l2_norm();
+    if (!std::isfinite(state.norm))
+      return "the residual of the initial guess is not finite";
 
-    const double root_n = std::sqrt(static_cast<double>(x.size()));
-    const double scale = (nonlinear.residual_scale == ResidualScale::physical) ?
-                           root_n * velocity_scale :
-                           norm;
-    const double target =
-      std::max(nonlinear.tolerance * scale,
-               nonlinear.absolute_tolerance * velocity_scale * root_n);
-    const auto relative = [&](const double value) {
-      return scale > 0. ? value / scale : 0.;
-    };
+    state.root_n = std::sqrt(static_cast<double>(x.size()));
+    state.scale  = (nonlinear.residual_scale == ResidualScale::physical) ?
+                     state.root_n * velocity_scale :
+                     state.norm;
+    state.target =
+      std::max(nonlinear.tolerance * state.scale,
+               nonlinear.absolute_tolerance * velocity_scale * state.root_n);
 
-    if (linear.probed_jacobi && norm > target)
+    if (linear.probed_jacobi && state.norm > state.target)
       problem.jacobian_diagonal(
         x,
         [this](const VectorType &a, const VectorType &b) {
           return differencing_step(a, b);
         },
-        diagonal);
+        state.diagonal);
 
     // The assembled preconditioner depends on the contact status: set up
     // before the first linear solve and again after each change of it.
-    const bool assembled = (linear.preconditioner == Preconditioner::amg);
-    bool       preconditioner_stale = assembled;
+    state.assembled            = (linear.preconditioner == Preconditioner::amg);
+    state.preconditioner_stale = state.assembled;
 
-    double       previous_norm = norm;
-    bool         restarted     = false;
-    unsigned int limit         = nonlinear.max_iterations;
-    double       eta           = nonlinear.forcing_constant;
-    for (unsigned int k = 0;; ++k)
+    state.previous_norm = state.norm;
+    state.restarted     = false;
+    state.limit         = nonlinear.max_iterations;
+    state.eta           = nonlinear.forcing_constant;
+    return "";
+  }
+
+
+
+  bool
+  NewtonKrylovSolver::at_iteration_limit(const unsigned int k,
+                                         IterationState    &state) const
+  {
+    // A solve that reaches the iteration limit still contracting fast
+    // enough to converge within a quarter more iterations (at the rate of
+    // its last iteration) is given them once, instead of throwing the step
+    // away just above the tolerance.
+    if (k == state.limit && state.limit == nonlinear.max_iterations && k > 0 &&
+        state.norm < 0.5 * state.previous_norm)
       {
-        statistics.residual_norm = norm / (root_n * velocity_scale);
-        if (norm <= target)
-          return finish(true, "");
-        // A solve that reaches the iteration limit still contracting fast
-        // enough to converge within a quarter more iterations (at the
-        // rate of its last iteration) is given them once, instead of
-        // throwing the step away just above the tolerance.
-        if (k == limit && limit == nonlinear.max_iterations && k > 0 &&
-            norm < 0.5 * previous_norm)
-          {
-            const unsigned int extra =
-              std::max(1U, nonlinear.max_iterations / 4);
-            if (std::log(target / norm) / std::log(norm / previous_norm) <=
-                extra)
-              limit += extra;
-          }
-        if (k == limit)
-          {
-            std::ostringstream why;
-            why << "Newton did not converge in " << k
-                << " iterations (||R|| / F_scale = " << std::setprecision(2)
-                << relative(norm) << ", tolerance " << nonlinear.tolerance
-                << ")";
-            return finish(false, why.str());
-          }
+        const unsigned int extra = std::max(1U, nonlinear.max_iterations / 4);
+        if (std::log(state.target / state.norm) /
+              std::log(state.norm / state.previous_norm) <=
+            extra)
+          state.limit += extra;
+      }
+    return k == state.limit;
+  }
 
-        // Forcing term: constant, or Eisenstat-Walker choice 2 with its
-        // safeguard; never below what the Newton tolerance needs. After a
-        // change of the contact status the residual belongs to another
-        // linearisation, and the ratio of EW would be that of two problems
-        // (a rise gave eta = 0.9, one GMRES iteration, a poor iterate and
-        // a status decided on it, so that hundreds of slots flipped on
-        // and off from iteration to iteration): the forcing starts again
-        // from the constant one. Not after a change of slip directions
-        // only: with friction those change at almost every iteration, and
-        // accurate steps then made them swing (the frictional two-disk
-        // collision no longer converged).
-        if (k > 0 && nonlinear.eisenstat_walker && !restarted)
-          {
-            const double safeguard =
-              nonlinear.forcing_gamma * std::pow(eta, nonlinear.forcing_alpha);
-            eta = nonlinear.forcing_gamma *
-                  std::pow(norm / previous_norm, nonlinear.forcing_alpha);
-            if (safeguard > 0.1)
-              eta = std::max(eta, safeguard);
-            eta = std::min(eta, nonlinear.forcing_maximum);
-          }
-        else if (!nonlinear.eisenstat_walker || restarted)
-          eta = nonlinear.forcing_constant;
-        restarted                     = false;
-        const double linear_tolerance = std::max(eta * norm, 0.5 * target);
 
-        if (preconditioner_stale)
-          {
-            problem.setup_preconditioner(x);
-            preconditioner_stale = false;
-          }
 
-        // J dx = -R, matrix-free, from dx = 0.
-        const FiniteDifferenceJacobian jacobian(problem, *this, x, r);
-        SolverControl                  control(linear.max_iterations,
-                              linear_tolerance,
-                              false,
-                              false);
-        dx  = 0.;
-        rhs = r;
-        rhs *= -1.;
-        try
-          {
-            if (linear.flexible)
-              {
-                SolverFGMRES<VectorType> fgmres(
-                  control,
-                  typename SolverFGMRES<VectorType>::AdditionalData(
-                    linear.restart_length));
-                if (linear.probed_jacobi)
-                  fgmres.solve(jacobian,
-                               dx,
-                               rhs,
-                               JacobiPreconditioner(jacobian,
-                                                    diagonal,
-                                                    linear.jacobi_weight,
-                                                    linear.jacobi_sweeps));
-                else if (assembled)
-                  fgmres.solve(jacobian,
-                               dx,
-                               rhs,
-                               AssembledPreconditioner(problem));
-                else
-                  fgmres.solve(jacobian, dx, rhs, PreconditionIdentity());
-              }
-            else
-              {
-                SolverGMRES<VectorType> gmres(
-                  control,
-                  typename SolverGMRES<VectorType>::AdditionalData(
-                    linear.restart_length + 2, true));
-                if (linear.probed_jacobi)
-                  gmres.solve(jacobian,
-                              dx,
-                              rhs,
-                              JacobiPreconditioner(
-                                jacobian, diagonal, linear.jacobi_weight, 1));
-                else if (assembled)
-                  gmres.solve(jacobian,
-                              dx,
-                              rhs,
-                              AssembledPreconditioner(problem));
-                else
-                  gmres.solve(jacobian, dx, rhs, PreconditionIdentity());
-              }
-          }
-        catch (const SolverControl::NoConvergence &)
-          {
-            // Inexact Newton goes on with the best direction found; the
-            // line search decides whether it is good enough.
-          }
-        catch (const std::exception &exception)
-          {
-            return finish(false,
-                          std::string("the Krylov solver failed: ") +
-                            exception.what());
-          }
-        statistics.linear_iterations += control.last_step();
-        if (!is_finite(dx))
-          return finish(false, "the Newton direction is not finite");
+  void
+  NewtonKrylovSolver::update_forcing_term(const unsigned int k,
+                                          IterationState    &state) const
+  {
+    // Constant, or Eisenstat-Walker choice 2 with its safeguard; never
+    // below what the Newton tolerance needs (solve_linear_system()). After
+    // a change of the contact status the residual belongs to another
+    // linearisation, and the ratio of EW would be that of two problems (a
+    // rise gave eta = 0.9, one GMRES iteration, a poor iterate and a
+    // status decided on it, so that hundreds of slots flipped on and off
+    // from iteration to iteration): the forcing starts again from the
+    // constant one. Not after a change of slip directions only: with
+    // friction those change at almost every iteration, and accurate steps
+    // then made them swing (the frictional two-disk collision no longer
+    // converged).
+    if (k > 0 && nonlinear.eisenstat_walker && !state.restarted)
+      {
+        const double safeguard = nonlinear.forcing_gamma *
+                                 std::pow(state.eta, nonlinear.forcing_alpha);
+        state.eta =
+          nonlinear.forcing_gamma *
+          std::pow(state.norm / state.previous_norm, nonlinear.forcing_alpha);
+        if (safeguard > 0.1)
+          state.eta = std::max(state.eta, safeguard);
+        state.eta = std::min(state.eta, nonlinear.forcing_maximum);
+      }
+    else if (!nonlinear.eisenstat_walker || state.restarted)
+      state.eta = nonlinear.forcing_constant;
+    state.restarted = false;
+  }
 
-        // Backtracking on ||R|| with the frozen status.
-        double       lambda   = 1.;
-        double       new_norm = 0.;
-        unsigned int cuts     = 0;
-        for (;; ++cuts)
-          {
-            trial = x;
-            trial.add(lambda, dx);
-            problem.residual(trial, trial_r);
-            new_norm = trial_r.l2_norm();
-            if (std::isfinite(new_norm) &&
-                (!nonlinear.line_search ||
-                 new_norm <= (1. - 1e-4 * lambda * (1. - eta)) * norm))
-              break;
-            if (cuts == nonlinear.max_line_search_cuts ||
-                !nonlinear.line_search)
-              {
-                std::ostringstream why;
-                why << "the line search found no decrease of ||R|| after "
-                    << cuts << " halvings (||R|| / F_scale = " << relative(norm)
-                    << ")";
-                return finish(false, why.str());
-              }
-            lambda *= 0.5;
-          }
-        x             = trial;
-        r             = trial_r;
-        previous_norm = norm;
-        norm          = new_norm;
-        ++statistics.iterations;
 
-        // Re-evaluate the contact status between iterations (at most
-        // Maximum contact status changes discrete changes).
-        if (statistics.status_changes < nonlinear.max_status_changes)
+
+  std::string
+  NewtonKrylovSolver::solve_linear_system(NonlinearProblem &problem,
+                                          const VectorType &x,
+                                          IterationState   &state) const
+  {
+    state.linear_iterations = 0;
+    const double linear_tolerance =
+      std::max(state.eta * state.norm, 0.5 * state.target);
+    if (state.preconditioner_stale)
+      {
+        problem.setup_preconditioner(x);
+        state.preconditioner_stale = false;
+      }
+
+    // J dx = -R, matrix-free, from dx = 0.
+    const FiniteDifferenceJacobian jacobian(problem, *this, x, state.r);
+    SolverControl                  control(linear.max_iterations,
+                          linear_tolerance,
+                          false,
+                          false);
+    state.dx  = 0.;
+    state.rhs = state.r;
+    state.rhs *= -1.;
+    const Preconditioning preconditioning{problem,
+                                          state.diagonal,
+                                          linear,
+                                          state.assembled};
+    try
+      {
+        if (linear.flexible)
           {
-            const NonlinearProblem::Change change =
-              problem.update_linearization(x);
-            if (change == NonlinearProblem::Change::discrete)
-              {
-                ++statistics.status_changes;
-                restarted            = true;
-                preconditioner_stale = assembled;
-              }
-            if (change != NonlinearProblem::Change::none)
-              {
-                problem.residual(x, r);
-                norm = r.l2_norm();
-                if (!std::isfinite(norm))
-                  return finish(false, "the residual is not finite");
-              }
+            SolverFGMRES<VectorType> fgmres(
+              control,
+              typename SolverFGMRES<VectorType>::AdditionalData(
+                linear.restart_length));
+            solve_preconditioned(fgmres,
+                                 jacobian,
+                                 state.dx,
+                                 state.rhs,
+                                 preconditioning,
+                                 linear.jacobi_sweeps);
+          }
+        else
+          {
+            SolverGMRES<VectorType> gmres(
+              control,
+              typename SolverGMRES<VectorType>::AdditionalData(
+                linear.restart_length + 2, true));
+            solve_preconditioned(
+              gmres, jacobian, state.dx, state.rhs, preconditioning, 1);
           }
       }
+    catch (const SolverControl::NoConvergence &)
+      {
+        // Inexact Newton goes on with the best direction found; the line
+        // search decides whether it is good enough.
+      }
+    catch (const std::exception &exception)
+      {
+        return std::string("the Krylov solver failed: ") + exception.what();
+      }
+    state.linear_iterations = control.last_step();
+    if (!is_finite(state.dx))
+      return "the Newton direction is not finite";
+    return "";
+  }
+
+
+
+  std::string
+  NewtonKrylovSolver::line_search(NonlinearProblem &problem,
+                                  VectorType       &x,
+                                  IterationState   &state) const
+  {
+    // Backtracking on ||R|| with the frozen status.
+    double       lambda   = 1.;
+    double       new_norm = 0.;
+    unsigned int cuts     = 0;
+    for (;; ++cuts)
+      {
+        state.trial = x;
+        state.trial.add(lambda, state.dx);
+        problem.residual(state.trial, state.trial_r);
+        new_norm = state.trial_r.l2_norm();
+        if (std::isfinite(new_norm) &&
+            (!nonlinear.line_search ||
+             new_norm <= (1. - 1e-4 * lambda * (1. - state.eta)) * state.norm))
+          break;
+        if (cuts == nonlinear.max_line_search_cuts || !nonlinear.line_search)
+          {
+            std::ostringstream why;
+            why << "the line search found no decrease of ||R|| after " << cuts
+                << " halvings (||R|| / F_scale = " << state.relative_norm()
+                << ")";
+            return why.str();
+          }
+        lambda *= 0.5;
+      }
+    x                   = state.trial;
+    state.r             = state.trial_r;
+    state.previous_norm = state.norm;
+    state.norm          = new_norm;
+    state.cuts          = cuts;
+    return "";
+  }
+
+
+
+  std::string
+  NewtonKrylovSolver::update_status(NonlinearProblem &problem,
+                                    const VectorType &x,
+                                    IterationState   &state,
+                                    NewtonStatistics &statistics) const
+  {
+    // Re-evaluate the contact status between iterations (at most Maximum
+    // contact status changes discrete changes).
+    if (statistics.status_changes >= nonlinear.max_status_changes)
+      return "";
+    const NonlinearProblem::Change change = problem.update_linearization(x);
+    if (change == NonlinearProblem::Change::discrete)
+      {
+        ++statistics.status_changes;
+        state.restarted            = true;
+        state.preconditioner_stale = state.assembled;
+      }
+    if (change != NonlinearProblem::Change::none)
+      {
+        problem.residual(x, state.r);
+        state.norm = state.r.l2_norm();
+        if (!std::isfinite(state.norm))
+          return "the residual is not finite";
+      }
+    return "";
+  }
+
+
+
+  void
+  NewtonKrylovSolver::log_iteration(const NewtonStatistics &statistics,
+                                    const IterationState   &state) const
+  {
+    if (!iteration_log.is_active())
+      return;
+    std::ostringstream line;
+    line << "  Newton " << std::setw(3) << statistics.iterations
+         << ": |R|/F = " << std::scientific << std::setprecision(3)
+         << state.relative_norm();
+    if (statistics.iterations > 0)
+      line << "  eta = " << std::setprecision(1) << state.eta << "  "
+           << (linear.flexible ? "FGMRES " : "GMRES ")
+           << state.linear_iterations << "  line search " << state.cuts
+           << "  status changes " << statistics.status_changes;
+    iteration_log << line.str() << std::endl;
+  }
+
+
+
+  void
+  NewtonKrylovSolver::log_result(const NewtonStatistics &statistics,
+                                 const IterationState   &state) const
+  {
+    if (!iteration_log.is_active())
+      return;
+    std::ostringstream line;
+    line << "  Newton "
+         << (statistics.converged ? "converged in " : "failed after ")
+         << statistics.iterations << " iterations: |R|/F = " << std::scientific
+         << std::setprecision(3) << state.relative_norm() << ", "
+         << statistics.linear_iterations << " Krylov iterations, "
+         << statistics.residual_evaluations << " residual evaluations";
+    if (!statistics.converged)
+      line << " (" << statistics.failure << ")";
+    iteration_log << line.str() << std::endl;
   }
 } // namespace grainmpm

@@ -3,6 +3,10 @@
 
 #include <grainmpm/time_integration/implicit_theta.h>
 
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+
 namespace grainmpm
 {
   namespace
@@ -39,7 +43,12 @@ namespace grainmpm
     , residual(contact, grid, materials)
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
-             velocity_scale(parameters, grains, materials))
+             velocity_scale(parameters, grains, materials),
+             ConditionalOStream(
+               std::cout,
+               parameters.nonlinear_solver.verbose &&
+                 Utilities::MPI::this_mpi_process(
+                   grid.get_triangulation().get_communicator()) == 0))
   {
     residual.set_status_band(parameters.nonlinear_solver.status_tolerance *
                              solver.get_velocity_scale());

@@ -5,7 +5,6 @@
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/time_integration/theta_residual.h>
 
-#include <deal.II/base/array_view.h>
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
@@ -150,154 +149,24 @@ namespace grainmpm
   void
   ThetaResidual<dim>::setup_preconditioner(const VectorType &)
   {
-    const unsigned int n_owned = layout->n_slots();
-    const unsigned int n_local = layout->n_local_slots();
-    VectorType         probe;
-    probe.reinit(*old_velocities, true);
-
-    // The unknowns among the owned and ghost slots: a probe of ones.
-    std::vector<bool> unknown(n_local, false);
-    probe = 0.;
-    for (unsigned int s = 0; s < n_owned; ++s)
-      if (slot_active[s] && !slot_rigid[s])
-        probe.local_element(s * dim) = 1.;
-    probe.update_ghost_values();
-    for (unsigned int s = 0; s < n_local; ++s)
-      unknown[s] = probe.local_element(s * dim) != 0.;
-    probe.zero_out_ghost_values();
-
-    // The slots of each node that this rank knows, and the place of each
-    // slot among the slots of its node (its owner's numbering; ghost slots
-    // learn it from the owner). Kept with the pattern.
-    if (preconditioner_pattern_stale)
-      {
-        VectorType index;
-        layout->reinit_vector(index, 1);
-        unsigned int largest = 0;
-        for (unsigned int node = 0; node < layout->n_nodes(); ++node)
-          {
-            const unsigned int begin = layout->node_slots_begin(node);
-            const unsigned int end   = layout->node_slots_end(node);
-            largest                  = std::max(largest, end - begin);
-            for (unsigned int s = begin; s < end; ++s)
-              index.local_element(s) = s - begin;
-          }
-        slots_per_node = Utilities::MPI::max(largest, communicator());
-        index.update_ghost_values();
-        slot_places.resize(n_local);
-        for (unsigned int s = 0; s < n_local; ++s)
-          slot_places[s] = static_cast<unsigned int>(index.local_element(s));
-
-        // Ghost slots grouped by node.
-        std::vector<std::pair<unsigned int, unsigned int>> ghosts;
-        for (unsigned int s = n_owned; s < n_local; ++s)
-          ghosts.emplace_back(layout->node(s), s);
-        std::sort(ghosts.begin(), ghosts.end());
-        projection.group_start.assign(n_local + 1, 0);
-        projection.groups.clear();
-        for (unsigned int s = 0; s < n_owned; ++s)
-          {
-            const unsigned int node = layout->node(s);
-            for (unsigned int t = layout->node_slots_begin(node);
-                 t < layout->node_slots_end(node);
-                 ++t)
-              projection.groups.push_back(t);
-            projection.group_start[s + 1] = projection.groups.size();
-          }
-        for (unsigned int s = n_owned; s < n_local; ++s)
-          {
-            const auto first =
-              std::lower_bound(ghosts.begin(),
-                               ghosts.end(),
-                               std::make_pair(layout->node(s), 0U));
-            for (auto g = first;
-                 g != ghosts.end() && g->first == layout->node(s);
-                 ++g)
-              projection.groups.push_back(g->second);
-            projection.group_start[s + 1] = projection.groups.size();
-          }
-      }
-
-    // P column by column: its linear part is node-wise, so one probe per
-    // place j among the slots of a node and direction d, a unit vector in
-    // the j-th slot of every node, gives the columns (j, d) of all node
-    // blocks at once.
-    std::vector<Tensor<2, dim>> blocks(n_local * slots_per_node);
-    std::vector<bool>           seen(n_local * slots_per_node, false);
-    for (unsigned int j = 0; j < slots_per_node; ++j)
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          probe = 0.;
-          for (unsigned int node = 0; node < layout->n_nodes(); ++node)
-            {
-              const unsigned int s = layout->node_slots_begin(node) + j;
-              if (s < layout->node_slots_end(node) && unknown[s])
-                probe.local_element(s * dim + d) = 1.;
-            }
-          status.apply_symmetric_linear_part(
-            contact, *layout, *masses, *normals, probe);
-          probe.update_ghost_values();
-          for (unsigned int s = 0; s < n_local; ++s)
-            for (unsigned int i = 0; i < dim; ++i)
-              {
-                const double value = probe.local_element(s * dim + i);
-                blocks[s * slots_per_node + j][i][d] = value;
-                if (value != 0.)
-                  seen[s * slots_per_node + j] = true;
-              }
-          probe.zero_out_ghost_values();
-        }
-    projection.start.assign(n_local + 1, 0);
-    projection.partners.clear();
-    projection.blocks.clear();
-    for (unsigned int s = 0; s < n_local; ++s)
-      {
-        if (unknown[s])
-          for (unsigned int k = projection.group_start[s];
-               k < projection.group_start[s + 1];
-               ++k)
-            {
-              const unsigned int t = projection.groups[k];
-              const unsigned int j = slot_places[t];
-              if (unknown[t] && seen[s * slots_per_node + j])
-                {
-                  projection.partners.push_back(t);
-                  projection.blocks.push_back(blocks[s * slots_per_node + j]);
-                }
-            }
-        projection.start[s + 1] = projection.partners.size();
-      }
-
-    // The lumped masses that divide the residual, of the owned and ghost
-    // slots (Q needs both); for the rows that are not unknowns (rigid,
-    // light slots: J = I) the mean of those, to keep A balanced.
-    double sums[2] = {0., 0.};
-    for (unsigned int s = 0; s < n_owned; ++s)
-      if (unknown[s])
-        {
-          sums[0] += masses->local_element(s);
-          sums[1] += 1.;
-        }
-    Utilities::MPI::sum(ArrayView<const double>(sums, 2),
-                        communicator(),
-                        ArrayView<double>(sums, 2));
-    const double mean = sums[1] > 0. ? sums[0] / sums[1] : 1.;
-    VectorType   ghosted_masses(*masses);
-    ghosted_masses.update_ghost_values();
-    std::vector<double> local_masses(n_local);
-    for (unsigned int s = 0; s < n_local; ++s)
-      local_masses[s] = unknown[s] ? ghosted_masses.local_element(s) : mean;
-
-    preconditioner.initialize(transfer->get_cache(),
-                              particle_models,
-                              particle_volumes,
-                              *mass_matrix,
-                              local_masses,
-                              unknown,
-                              projection,
-                              theta * theta * dt * dt,
-                              *old_velocities,
-                              preconditioner_pattern_stale);
+    std::vector<bool> unknown(layout->n_slots());
+    for (unsigned int s = 0; s < unknown.size(); ++s)
+      unknown[s] = slot_active[s] && !slot_rigid[s];
+    preconditioner.setup(
+      *layout,
+      unknown,
+      *masses,
+      [this](VectorType &v) {
+        status.apply_symmetric_linear_part(
+          contact, *layout, *masses, *normals, v);
+      },
+      transfer->get_cache(),
+      particle_models,
+      particle_volumes,
+      *mass_matrix,
+      theta * theta * dt * dt,
+      *old_velocities,
+      preconditioner_pattern_stale);
     preconditioner_pattern_stale = false;
   }
 
@@ -398,7 +267,37 @@ namespace grainmpm
       !status.wall_slots.empty();
     theta_velocities(work_projected, work_theta);
     work_theta.update_ghost_values();
+    const bool inverted = assemble_internal_forces();
+    work_theta.zero_out_ghost_values();
+    // M (V - v^n), before the return on inverted particles: it is
+    // collective.
+    if (!mass_matrix->is_lumped())
+      {
+        const unsigned int n = velocities.locally_owned_size();
+        for (unsigned int k = 0; k < n; ++k)
+          work_increment.local_element(k) =
+            velocities.local_element(k) - old_velocities->local_element(k);
+        mass_matrix->vmult(work_inertia, work_increment);
+      }
+    if (inverted)
+      {
+        // NaN on this rank makes every rank's norm NaN.
+        residual = std::numeric_limits<double>::quiet_NaN();
+        return;
+      }
 
+    raw_residual(velocities, residual);
+    if (raw || !constrained)
+      return;
+    constrain_residual(velocities, residual, simplified);
+  }
+
+
+
+  template <int dim>
+  bool
+  ThetaResidual<dim>::assemble_internal_forces() const
+  {
     // Internal forces from the time-centred stress and volume (eqs. 12-13),
     // on raw pointers and local copies of theta and dt: stores into the
     // forces could otherwise alias them, and they would be reloaded for
@@ -449,26 +348,17 @@ namespace grainmpm
             }
         transfer->subtract_divergence(p, stress, forces);
       }
-
     work_forces.compress(VectorOperation::add);
-    work_theta.zero_out_ghost_values();
-    // M (V - v^n), before the return on inverted particles: it is
-    // collective.
-    if (!mass_matrix->is_lumped())
-      {
-        const unsigned int n = velocities.locally_owned_size();
-        for (unsigned int k = 0; k < n; ++k)
-          work_increment.local_element(k) =
-            velocities.local_element(k) - old_velocities->local_element(k);
-        mass_matrix->vmult(work_inertia, work_increment);
-      }
-    if (inverted)
-      {
-        // NaN on this rank makes every rank's norm NaN.
-        residual = std::numeric_limits<double>::quiet_NaN();
-        return;
-      }
+    return inverted;
+  }
 
+
+
+  template <int dim>
+  void
+  ThetaResidual<dim>::raw_residual(const VectorType &velocities,
+                                   VectorType       &residual) const
+  {
     // R = V - v^n - dt (f / m + g), in velocity units; with the blended
     // mass, M (V - v^n) / m in place of V - v^n. Slots too light to carry
     // a force fall with gravity.
@@ -495,9 +385,16 @@ namespace grainmpm
           residual.local_element(k) =
             inertia - dt * (acceleration + gravity[d]);
         }
-    if (raw || !constrained)
-      return;
+  }
 
+
+
+  template <int dim>
+  void
+  ThetaResidual<dim>::constrain_residual(const VectorType &velocities,
+                                         VectorType       &residual,
+                                         const bool        simplified) const
+  {
     // Constrained form R = P R_raw + (V - P V): the frozen projection P is
     // the mass-orthogonal projection onto the velocities that satisfy the
     // active contacts and walls (with friction, its sliding variant), so

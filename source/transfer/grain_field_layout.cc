@@ -23,83 +23,61 @@ namespace grainmpm
 
 
   template <int dim>
+  inline unsigned int
+  GrainFieldLayout<dim>::find_or_add(const unsigned int node,
+                                     const unsigned int field,
+                                     bool              &overflow)
+  {
+    constexpr unsigned int capacity = max_fields_per_node<dim>;
+    unsigned int *list  = &node_field_scratch[std::size_t(node) * capacity];
+    unsigned int &count = node_count_scratch[node];
+    unsigned int  k     = 0;
+    while (k < count && list[k] != field)
+      ++k;
+    if (k == count)
+      {
+        if (count == capacity)
+          {
+            overflow = true;
+            return 0U;
+          }
+        list[count++] = field;
+      }
+    return k;
+  }
+
+
+
+  template <int dim>
   void
   GrainFieldLayout<dim>::reinit(TransferCache<dim>        &cache,
                                 const BackgroundGrid<dim> &grid)
   {
     constexpr unsigned int capacity = max_fields_per_node<dim>;
-    using Message                   = std::vector<types::global_dof_index>;
-    const unsigned int n_nodes      = grid.n_nodes();
+    const unsigned int     n_nodes  = grid.n_nodes();
     n_owned_nodes                   = grid.n_owned_nodes();
     mpi_communicator = grid.get_triangulation().get_communicator();
-    const Utilities::MPI::Partitioner &nodes = *grid.node_partitioner();
-
-    // The position of @p field in the list of @p node, appended if new;
-    // capacity if the list is full.
-    bool       overflow    = false;
-    const auto find_or_add = [&](const unsigned int node,
-                                 const unsigned int field) {
-      unsigned int *list  = &node_field_scratch[std::size_t(node) * capacity];
-      unsigned int &count = node_count_scratch[node];
-      unsigned int  k     = 0;
-      while (k < count && list[k] != field)
-        ++k;
-      if (k == count)
-        {
-          if (count == capacity)
-            {
-              overflow = true;
-              return 0U;
-            }
-          list[count++] = field;
-        }
-      return k;
-    };
-    const auto check_overflow = [&]() {
-      if (Utilities::MPI::max(overflow ? 1U : 0U, mpi_communicator) > 0)
-        throw InputError("Grains",
-                         "more than " + std::to_string(capacity) +
-                           " grains meet at one grid node; the grains are too "
-                           "small for the grid. Refine the background grid.");
-    };
 
     // Pass 1: for each node, the list of fields touching it; remember the
     // position of each (particle, vertex) pair in its node's list.
+    bool overflow = false;
     node_count_scratch.assign(n_nodes, 0U);
     node_field_scratch.resize(std::size_t(n_nodes) * capacity);
     const std::size_t n_particles = cache.n_particles();
     for (std::size_t p = 0; p < n_particles; ++p)
       for (unsigned int e = cache.first_entry[p]; e < cache.first_entry[p + 1];
            ++e)
-        cache.slots[e] = find_or_add(cache.nodes[e], cache.fields[p]);
+        cache.slots[e] = find_or_add(cache.nodes[e], cache.fields[p], overflow);
 
-    // Pass 2: tell the owners of the ghost nodes which fields this rank has
-    // there ([node, count, fields...] per node); the owners add them.
-    std::map<unsigned int, Message> requests;
-    {
-      unsigned int ghost = n_owned_nodes;
-      for (const auto &[rank, n_ghosts] : nodes.ghost_targets())
-        for (unsigned int i = 0; i < n_ghosts; ++i, ++ghost)
-          if (node_count_scratch[ghost] > 0)
-            {
-              Message &message = requests[rank];
-              message.push_back(grid.node_global_index(ghost));
-              message.push_back(node_count_scratch[ghost]);
-              for (unsigned int k = 0; k < node_count_scratch[ghost]; ++k)
-                message.push_back(
-                  node_field_scratch[std::size_t(ghost) * capacity + k]);
-            }
-    }
+    // Pass 2: the owners of ghost nodes add the fields other ranks have
+    // there.
     const std::map<unsigned int, Message> received =
-      Utilities::MPI::some_to_some(mpi_communicator, requests);
-    for (const auto &[rank, message] : received)
-      for (std::size_t i = 0; i < message.size(); i += 2 + message[i + 1])
-        {
-          const unsigned int node = nodes.global_to_local(message[i]);
-          for (unsigned int k = 0; k < message[i + 1]; ++k)
-            find_or_add(node, message[i + 2 + k]);
-        }
-    check_overflow();
+      exchange_ghost_fields(grid, overflow);
+    if (Utilities::MPI::max(overflow ? 1U : 0U, mpi_communicator) > 0)
+      throw InputError("Grains",
+                       "more than " + std::to_string(capacity) +
+                         " grains meet at one grid node; the grains are too "
+                         "small for the grid. Refine the background grid.");
 
     // Pass 3: number the owned slots node by node.
     node_slot_offsets.resize(n_nodes + 1);
@@ -117,67 +95,11 @@ namespace grainmpm
     const types::global_dof_index first_slot =
       sum_over_lower_ranks(n_owned, mpi_communicator);
 
-    // Pass 4: the owners answer with the global numbers of the requested
-    // slots, in the order asked.
-    std::map<unsigned int, Message> answers;
-    for (const auto &[rank, message] : received)
-      {
-        Message &answer = answers[rank];
-        for (std::size_t i = 0; i < message.size(); i += 2 + message[i + 1])
-          {
-            const unsigned int node = nodes.global_to_local(message[i]);
-            for (unsigned int k = 0; k < message[i + 1]; ++k)
-              answer.push_back(first_slot + node_slot_offsets[node] +
-                               find_or_add(node, message[i + 2 + k]));
-          }
-      }
-    const std::map<unsigned int, Message> replies =
-      Utilities::MPI::some_to_some(mpi_communicator, answers);
-
-    // Pass 5: the ghost slots, node by node (ghost nodes are in the order of
-    // their global DoF, so of their owner and the owner's node numbering),
-    // each node's in the order of their global numbers: then the local
-    // ghost slots are in the order of their global numbers, which is the
-    // order of a vector partitioner's ghost entries. ghost_positions maps
-    // a field's place in a ghost node's list to its place among the
-    // node's slots.
-    const unsigned int        n_ghost_nodes = n_nodes - n_owned_nodes;
-    std::vector<unsigned int> ghost_positions(std::size_t(n_ghost_nodes) *
-                                              capacity);
+    // Passes 4 and 5: the ghost slots and their global numbers.
+    std::vector<unsigned int>            ghost_positions;
     std::vector<types::global_dof_index> ghost_slot_numbers;
-    {
-      std::vector<std::pair<types::global_dof_index, unsigned int>> order;
-      unsigned int ghost = n_owned_nodes;
-      for (const auto &[rank, n_ghosts] : nodes.ghost_targets())
-        {
-          const auto  reply    = replies.find(rank);
-          std::size_t position = 0;
-          for (unsigned int i = 0; i < n_ghosts; ++i, ++ghost)
-            {
-              const unsigned int count     = node_count_scratch[ghost];
-              node_slot_offsets[ghost + 1] = node_slot_offsets[ghost] + count;
-              if (count == 0)
-                continue;
-              Assert(reply != replies.end() &&
-                       position + count <= reply->second.size(),
-                     ExcInternalError());
-              order.clear();
-              for (unsigned int k = 0; k < count; ++k)
-                order.emplace_back(reply->second[position++], k);
-              std::sort(order.begin(), order.end());
-              for (unsigned int j = 0; j < count; ++j)
-                {
-                  ghost_positions[std::size_t(ghost - n_owned_nodes) *
-                                    capacity +
-                                  order[j].second] = j;
-                  AssertThrow(ghost_slot_numbers.empty() ||
-                                order[j].first > ghost_slot_numbers.back(),
-                              ExcInternalError());
-                  ghost_slot_numbers.push_back(order[j].first);
-                }
-            }
-        }
-    }
+    number_ghost_slots(
+      grid, received, first_slot, ghost_positions, ghost_slot_numbers);
 
     const unsigned int n_local = node_slot_offsets[n_nodes];
     slot_nodes.resize(n_local);
@@ -206,9 +128,129 @@ namespace grainmpm
                                   slot]);
       }
 
-    // The vector partitioners with 1 and dim numbers per slot, built here
-    // by all ranks together (their construction communicates).
+    make_partitioners(first_slot, ghost_slot_numbers);
+  }
+
+
+
+  template <int dim>
+  std::map<unsigned int, typename GrainFieldLayout<dim>::Message>
+  GrainFieldLayout<dim>::exchange_ghost_fields(const BackgroundGrid<dim> &grid,
+                                               bool &overflow)
+  {
+    constexpr unsigned int             capacity = max_fields_per_node<dim>;
+    const Utilities::MPI::Partitioner &nodes    = *grid.node_partitioner();
+    // [node, count, fields...] per ghost node with fields, to its owner.
+    std::map<unsigned int, Message> requests;
+    unsigned int                    ghost = n_owned_nodes;
+    for (const auto &[rank, n_ghosts] : nodes.ghost_targets())
+      for (unsigned int i = 0; i < n_ghosts; ++i, ++ghost)
+        if (node_count_scratch[ghost] > 0)
+          {
+            Message &message = requests[rank];
+            message.push_back(grid.node_global_index(ghost));
+            message.push_back(node_count_scratch[ghost]);
+            for (unsigned int k = 0; k < node_count_scratch[ghost]; ++k)
+              message.push_back(
+                node_field_scratch[std::size_t(ghost) * capacity + k]);
+          }
+    std::map<unsigned int, Message> received =
+      Utilities::MPI::some_to_some(mpi_communicator, requests);
+    for (const auto &[rank, message] : received)
+      for (std::size_t i = 0; i < message.size(); i += 2 + message[i + 1])
+        {
+          const unsigned int node = nodes.global_to_local(message[i]);
+          for (unsigned int k = 0; k < message[i + 1]; ++k)
+            find_or_add(node, message[i + 2 + k], overflow);
+        }
+    return received;
+  }
+
+
+
+  template <int dim>
+  void
+  GrainFieldLayout<dim>::number_ghost_slots(
+    const BackgroundGrid<dim>             &grid,
+    const std::map<unsigned int, Message> &received,
+    const types::global_dof_index          first_slot,
+    std::vector<unsigned int>             &ghost_positions,
+    std::vector<types::global_dof_index>  &ghost_slot_numbers)
+  {
+    constexpr unsigned int             capacity = max_fields_per_node<dim>;
+    const Utilities::MPI::Partitioner &nodes    = *grid.node_partitioner();
+    bool                               overflow = false; // checked before
+
+    // Pass 4: the owners answer with the global numbers of the requested
+    // slots, in the order asked.
+    std::map<unsigned int, Message> answers;
+    for (const auto &[rank, message] : received)
+      {
+        Message &answer = answers[rank];
+        for (std::size_t i = 0; i < message.size(); i += 2 + message[i + 1])
+          {
+            const unsigned int node = nodes.global_to_local(message[i]);
+            for (unsigned int k = 0; k < message[i + 1]; ++k)
+              answer.push_back(first_slot + node_slot_offsets[node] +
+                               find_or_add(node, message[i + 2 + k], overflow));
+          }
+      }
+    const std::map<unsigned int, Message> replies =
+      Utilities::MPI::some_to_some(mpi_communicator, answers);
+
+    // Pass 5: the ghost slots, node by node (ghost nodes are in the order of
+    // their global DoF, so of their owner and the owner's node numbering),
+    // each node's in the order of their global numbers: then the local
+    // ghost slots are in the order of their global numbers, which is the
+    // order of a vector partitioner's ghost entries. ghost_positions maps
+    // a field's place in a ghost node's list to its place among the
+    // node's slots.
+    const unsigned int n_ghost_nodes = grid.n_nodes() - n_owned_nodes;
+    ghost_positions.assign(std::size_t(n_ghost_nodes) * capacity, 0U);
+    ghost_slot_numbers.clear();
+    std::vector<std::pair<types::global_dof_index, unsigned int>> order;
+    unsigned int ghost = n_owned_nodes;
+    for (const auto &[rank, n_ghosts] : nodes.ghost_targets())
+      {
+        const auto  reply    = replies.find(rank);
+        std::size_t position = 0;
+        for (unsigned int i = 0; i < n_ghosts; ++i, ++ghost)
+          {
+            const unsigned int count     = node_count_scratch[ghost];
+            node_slot_offsets[ghost + 1] = node_slot_offsets[ghost] + count;
+            if (count == 0)
+              continue;
+            Assert(reply != replies.end() &&
+                     position + count <= reply->second.size(),
+                   ExcInternalError());
+            order.clear();
+            for (unsigned int k = 0; k < count; ++k)
+              order.emplace_back(reply->second[position++], k);
+            std::sort(order.begin(), order.end());
+            for (unsigned int j = 0; j < count; ++j)
+              {
+                ghost_positions[std::size_t(ghost - n_owned_nodes) * capacity +
+                                order[j].second] = j;
+                AssertThrow(ghost_slot_numbers.empty() ||
+                              order[j].first > ghost_slot_numbers.back(),
+                            ExcInternalError());
+                ghost_slot_numbers.push_back(order[j].first);
+              }
+          }
+      }
+  }
+
+
+
+  template <int dim>
+  void
+  GrainFieldLayout<dim>::make_partitioners(
+    const types::global_dof_index               first_slot,
+    const std::vector<types::global_dof_index> &ghost_slot_numbers)
+  {
+    // Built by all ranks together (their construction communicates).
     partitioners.clear();
+    const types::global_dof_index n_owned = n_owned_slots;
     const types::global_dof_index n_total =
       Utilities::MPI::sum(n_owned, mpi_communicator);
     for (const unsigned int components : {1U, static_cast<unsigned int>(dim)})

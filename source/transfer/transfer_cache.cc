@@ -64,7 +64,6 @@ namespace grainmpm
     const ShapeFunctions                   shape_functions,
     const Tensor<1, dim>                  &half_width)
   {
-    using Layout          = MaterialPointLayout<dim>;
     this->shape_functions = shape_functions;
     update_cells(grid, particle_handler);
     const std::size_t  n = particle_handler.n_locally_owned_particles();
@@ -83,152 +82,178 @@ namespace grainmpm
       }
     fields.resize(n);
 
+    first_entry[n] =
+      shape_functions == ShapeFunctions::linear ?
+        fill_linear(grid, particle_handler, field_of_grain) :
+        fill_gimp(grid, particle_handler, field_of_grain, half_width);
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  TransferCache<dim>::fill_linear(
+    const BackgroundGrid<dim>             &grid,
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const std::vector<unsigned int>       &field_of_grain)
+  {
     Tensor<1, dim> inverse_h;
     for (unsigned int d = 0; d < dim; ++d)
       inverse_h[d] = 1. / grid.cell_size()[d];
-
     std::size_t  p     = 0;
     unsigned int entry = 0;
-    if (shape_functions == ShapeFunctions::linear)
-      {
-        // Loop over cells, then over the particles in each cell: the node
-        // table entry is looked up once per cell.
-        for_each_particle(
-          particle_handler, [&](const auto &cell, const auto &particle) {
-            const unsigned int *cell_nodes =
-              grid.cell_nodes(cell->active_cell_index());
-            const Point<dim> xi = particle->get_reference_location();
-            // Q1: S = prod_d N_d, N_d = xi_d (vertex bit 1) or 1 - xi_d.
-            double one_d_values[dim][2];
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                one_d_values[d][0] = 1. - xi[d];
-                one_d_values[d][1] = xi[d];
-              }
-            first_entry[p]                    = entry;
-            constexpr unsigned int n_vertices = 1U << dim;
-            for (unsigned int v = 0; v < n_vertices; ++v, ++entry)
-              {
-                double         value = 1.;
-                Tensor<1, dim> gradient;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    const unsigned int bit = (v >> d) & 1U;
-                    value *= one_d_values[d][bit];
-                    double derivative = (bit ? 1. : -1.) * inverse_h[d];
-                    for (unsigned int e = 0; e < dim; ++e)
-                      if (e != d)
-                        derivative *= one_d_values[e][(v >> e) & 1U];
-                    gradient[d] = derivative;
-                  }
-                nodes[entry]           = cell_nodes[v];
-                shape_values[entry]    = value;
-                shape_gradients[entry] = gradient;
-              }
-            fields[p] = field_of_grain[MaterialPointLayout<dim>::get_grain(
-              particle->get_properties())];
-            ++p;
-          });
-      }
-    else
-      {
-        // Half-widths in units of the cell size, at most half a cell so
-        // that a particle touches at most 3 nodes per axis.
-        Tensor<1, dim> initial_width;
+    // Loop over cells, then over the particles in each cell: the node
+    // table entry is looked up once per cell.
+    for_each_particle(
+      particle_handler, [&](const auto &cell, const auto &particle) {
+        const unsigned int *cell_nodes =
+          grid.cell_nodes(cell->active_cell_index());
+        const Point<dim> xi = particle->get_reference_location();
+        // Q1: S = prod_d N_d, N_d = xi_d (vertex bit 1) or 1 - xi_d.
+        double one_d_values[dim][2];
         for (unsigned int d = 0; d < dim; ++d)
-          initial_width[d] = std::min(0.5, half_width[d] * inverse_h[d]);
-        const std::vector<unsigned int> &n_cells = grid.n_cells();
-        // The lattice index of the lower vertex of the cell of the last
-        // particle.
-        std::array<int, dim> cell_index;
-        unsigned int         last_cell = numbers::invalid_unsigned_int;
-        for_each_particle(
-          particle_handler, [&](const auto &cell, const auto &particle) {
-            if (cell->active_cell_index() != last_cell)
-              {
-                last_cell  = cell->active_cell_index();
-                cell_index = grid.node_lattice_index(
-                  grid.cell_nodes(cell->active_cell_index())[0]);
-              }
-            // The particle's interval per axis in cell units, cut at the
-            // box.
-            const Point<dim> xi         = particle->get_reference_location();
-            const auto       properties = particle->get_properties();
-            Tensor<1, dim>   width      = initial_width;
-            if (shape_functions == ShapeFunctions::cpgimp)
-              {
-                const Tensor<2, dim> F =
-                  Layout::get_deformation_gradient(properties);
-                // Half-width along axis d: l_0 sqrt((F F^T)_dd), the length
-                // of row d of F, unchanged by rotations; kept above 1e-6
-                // cells so that (Phi(b) - Phi(a)) / (b - a) stays accurate.
-                for (unsigned int d = 0; d < dim; ++d)
-                  width[d] =
-                    std::min(0.5, std::max(1e-6, width[d] * F[d].norm()));
-              }
-            // Per axis the nodes with a positive weight: their values,
-            // derivatives and parts of the lattice position.
-            AxisWeights axes[dim];
-            std::size_t parts[dim][4];
+          {
+            one_d_values[d][0] = 1. - xi[d];
+            one_d_values[d][1] = xi[d];
+          }
+        first_entry[p]                    = entry;
+        constexpr unsigned int n_vertices = 1U << dim;
+        for (unsigned int v = 0; v < n_vertices; ++v, ++entry)
+          {
+            double         value = 1.;
+            Tensor<1, dim> gradient;
             for (unsigned int d = 0; d < dim; ++d)
               {
-                const double a =
-                  std::max(xi[d] - width[d], -1. * cell_index[d]);
-                const double b =
-                  std::min(xi[d] + width[d],
-                           static_cast<double>(n_cells[d]) - cell_index[d]);
-                axes[d].compute(a, b);
-                for (unsigned int k = 0; k < axes[d].n; ++k)
-                  {
-                    axes[d].derivatives[k] *= inverse_h[d];
-                    parts[d][k] =
-                      grid.lattice_part(d, cell_index[d] + axes[d].offsets[k]);
-                  }
+                const unsigned int bit = (v >> d) & 1U;
+                value *= one_d_values[d][bit];
+                double derivative = (bit ? 1. : -1.) * inverse_h[d];
+                for (unsigned int e = 0; e < dim; ++e)
+                  if (e != d)
+                    derivative *= one_d_values[e][(v >> e) & 1U];
+                gradient[d] = derivative;
               }
-            // Their tensor products, counting through the axes like an
-            // odometer.
-            first_entry[p]        = entry;
-            unsigned int at[dim]  = {};
-            bool         finished = false;
-            while (!finished)
+            nodes[entry]           = cell_nodes[v];
+            shape_values[entry]    = value;
+            shape_gradients[entry] = gradient;
+          }
+        fields[p] = field_of_grain[MaterialPointLayout<dim>::get_grain(
+          particle->get_properties())];
+        ++p;
+      });
+    AssertDimension(p, particle_handler.n_locally_owned_particles());
+    return entry;
+  }
+
+
+
+  template <int dim>
+  unsigned int
+  TransferCache<dim>::fill_gimp(
+    const BackgroundGrid<dim>             &grid,
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const std::vector<unsigned int>       &field_of_grain,
+    const Tensor<1, dim>                  &half_width)
+  {
+    using Layout = MaterialPointLayout<dim>;
+    Tensor<1, dim> inverse_h;
+    for (unsigned int d = 0; d < dim; ++d)
+      inverse_h[d] = 1. / grid.cell_size()[d];
+    std::size_t  p     = 0;
+    unsigned int entry = 0;
+    // Half-widths in units of the cell size, at most half a cell so
+    // that a particle touches at most 3 nodes per axis.
+    Tensor<1, dim> initial_width;
+    for (unsigned int d = 0; d < dim; ++d)
+      initial_width[d] = std::min(0.5, half_width[d] * inverse_h[d]);
+    const std::vector<unsigned int> &n_cells = grid.n_cells();
+    // The lattice index of the lower vertex of the cell of the last
+    // particle.
+    std::array<int, dim> cell_index;
+    unsigned int         last_cell = numbers::invalid_unsigned_int;
+    for_each_particle(
+      particle_handler, [&](const auto &cell, const auto &particle) {
+        if (cell->active_cell_index() != last_cell)
+          {
+            last_cell  = cell->active_cell_index();
+            cell_index = grid.node_lattice_index(
+              grid.cell_nodes(cell->active_cell_index())[0]);
+          }
+        // The particle's interval per axis in cell units, cut at the
+        // box.
+        const Point<dim> xi         = particle->get_reference_location();
+        const auto       properties = particle->get_properties();
+        Tensor<1, dim>   width      = initial_width;
+        if (shape_functions == ShapeFunctions::cpgimp)
+          {
+            const Tensor<2, dim> F =
+              Layout::get_deformation_gradient(properties);
+            // Half-width along axis d: l_0 sqrt((F F^T)_dd), the length
+            // of row d of F, unchanged by rotations; kept above 1e-6
+            // cells so that (Phi(b) - Phi(a)) / (b - a) stays accurate.
+            for (unsigned int d = 0; d < dim; ++d)
+              width[d] = std::min(0.5, std::max(1e-6, width[d] * F[d].norm()));
+          }
+        // Per axis the nodes with a positive weight: their values,
+        // derivatives and parts of the lattice position.
+        AxisWeights axes[dim];
+        std::size_t parts[dim][4];
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double a = std::max(xi[d] - width[d], -1. * cell_index[d]);
+            const double b =
+              std::min(xi[d] + width[d],
+                       static_cast<double>(n_cells[d]) - cell_index[d]);
+            axes[d].compute(a, b);
+            for (unsigned int k = 0; k < axes[d].n; ++k)
               {
-                double         value    = 1.;
-                std::size_t    position = 0;
-                Tensor<1, dim> gradient;
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    value *= axes[d].values[at[d]];
-                    position += parts[d][at[d]];
-                    double derivative = axes[d].derivatives[at[d]];
-                    for (unsigned int e = 0; e < dim; ++e)
-                      if (e != d)
-                        derivative *= axes[e].values[at[e]];
-                    gradient[d] = derivative;
-                  }
-                AssertIndexRange(entry, nodes.size());
-                nodes[entry] = grid.lattice_node(position);
-                Assert(nodes[entry] != numbers::invalid_unsigned_int,
-                       ExcInternalError());
-                shape_values[entry]    = value;
-                shape_gradients[entry] = gradient;
-                ++entry;
-                finished = true;
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (++at[d] < axes[d].n)
-                    {
-                      finished = false;
-                      break;
-                    }
-                  else
-                    at[d] = 0;
+                axes[d].derivatives[k] *= inverse_h[d];
+                parts[d][k] =
+                  grid.lattice_part(d, cell_index[d] + axes[d].offsets[k]);
               }
-            fields[p] =
-              field_of_grain[MaterialPointLayout<dim>::get_grain(properties)];
-            ++p;
-          });
-      }
-    AssertDimension(p, n);
-    first_entry[n] = entry;
+          }
+        // Their tensor products, counting through the axes like an
+        // odometer.
+        first_entry[p]        = entry;
+        unsigned int at[dim]  = {};
+        bool         finished = false;
+        while (!finished)
+          {
+            double         value    = 1.;
+            std::size_t    position = 0;
+            Tensor<1, dim> gradient;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                value *= axes[d].values[at[d]];
+                position += parts[d][at[d]];
+                double derivative = axes[d].derivatives[at[d]];
+                for (unsigned int e = 0; e < dim; ++e)
+                  if (e != d)
+                    derivative *= axes[e].values[at[e]];
+                gradient[d] = derivative;
+              }
+            AssertIndexRange(entry, nodes.size());
+            nodes[entry] = grid.lattice_node(position);
+            Assert(nodes[entry] != numbers::invalid_unsigned_int,
+                   ExcInternalError());
+            shape_values[entry]    = value;
+            shape_gradients[entry] = gradient;
+            ++entry;
+            finished = true;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (++at[d] < axes[d].n)
+                {
+                  finished = false;
+                  break;
+                }
+              else
+                at[d] = 0;
+          }
+        fields[p] =
+          field_of_grain[MaterialPointLayout<dim>::get_grain(properties)];
+        ++p;
+      });
+    AssertDimension(p, particle_handler.n_locally_owned_particles());
+    return entry;
   }
 
 

@@ -10,6 +10,7 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameter_parsing.h>
 #include <grainmpm/base/parameters.h>
+#include <grainmpm/materials/von_mises.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -139,13 +140,12 @@ main(int argc, char **argv)
     MaterialParameters material;
     material.name = "steel";
     material.check();
-    deallog << "constitutive model: "
-            << static_cast<int>(material.constitutive_model);
-    material.constitutive_model_text = "von Mises";
-    material.yield_stress            = 1.;
+    deallog << "constitutive model: " << material.constitutive_model;
+    material.constitutive_model = "von Mises";
+    material.get_model_parameters<VonMisesParameters>("von Mises")
+      .yield_stress = 1.;
     material.check();
-    deallog << ", " << static_cast<int>(material.constitutive_model)
-            << std::endl;
+    deallog << ", " << material.constitutive_model << std::endl;
   }
 
   // Unknown texts.
@@ -191,8 +191,8 @@ main(int argc, char **argv)
   }
   {
     MaterialParameters material;
-    material.name                    = "steel";
-    material.constitutive_model_text = "Drucker-Prager";
+    material.name               = "steel";
+    material.constitutive_model = "Drucker-Prager";
     check("constitutive model", material);
   }
   {

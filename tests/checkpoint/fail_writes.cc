@@ -49,8 +49,8 @@ namespace
     if (n >= m && std::strcmp(path + n - m, suffix) == 0)
       {
         const char *after = std::getenv("GRAINMPM_FAIL_WRITES_AFTER");
-        if (n_opened++ >= (after != nullptr ? std::strtoul(after, nullptr, 10) :
-                                              0UL))
+        if (n_opened++ >=
+            (after != nullptr ? std::strtoul(after, nullptr, 10) : 0UL))
           failing.insert(fd);
       }
   }
@@ -81,9 +81,8 @@ extern "C"
     va_start(arguments, flags);
     const mode_t mode = mode_argument(flags, arguments);
     va_end(arguments);
-    const int fd = next<int (*)(const char *, int, ...)>("open")(path,
-                                                                 flags,
-                                                                 mode);
+    const int fd =
+      next<int (*)(const char *, int, ...)>("open")(path, flags, mode);
     track(fd, path);
     return fd;
   }
@@ -95,9 +94,8 @@ extern "C"
     va_start(arguments, flags);
     const mode_t mode = mode_argument(flags, arguments);
     va_end(arguments);
-    const int fd = next<int (*)(const char *, int, ...)>("open64")(path,
-                                                                   flags,
-                                                                   mode);
+    const int fd =
+      next<int (*)(const char *, int, ...)>("open64")(path, flags, mode);
     track(fd, path);
     return fd;
   }
@@ -109,8 +107,8 @@ extern "C"
     va_start(arguments, flags);
     const mode_t mode = mode_argument(flags, arguments);
     va_end(arguments);
-    const int fd = next<int (*)(int, const char *, int, ...)>("openat")(
-      directory, path, flags, mode);
+    const int fd = next<int (*)(int, const char *, int, ...)>(
+      "openat")(directory, path, flags, mode);
     track(fd, path);
     return fd;
   }
@@ -148,9 +146,8 @@ extern "C"
   {
     if (fails(fd))
       return -1;
-    return next<ssize_t (*)(int, const void *, size_t)>("write")(fd,
-                                                                 buffer,
-                                                                 count);
+    return next<ssize_t (*)(int, const void *, size_t)>(
+      "write")(fd, buffer, count);
   }
 
   ssize_t
@@ -158,8 +155,8 @@ extern "C"
   {
     if (fails(fd))
       return -1;
-    return next<ssize_t (*)(int, const void *, size_t, off_t)>("pwrite")(
-      fd, buffer, count, offset);
+    return next<ssize_t (*)(int, const void *, size_t, off_t)>(
+      "pwrite")(fd, buffer, count, offset);
   }
 
   ssize_t
@@ -167,8 +164,8 @@ extern "C"
   {
     if (fails(fd))
       return -1;
-    return next<ssize_t (*)(int, const void *, size_t, off64_t)>("pwrite64")(
-      fd, buffer, count, offset);
+    return next<ssize_t (*)(int, const void *, size_t, off64_t)>(
+      "pwrite64")(fd, buffer, count, offset);
   }
 
   ssize_t
@@ -176,8 +173,8 @@ extern "C"
   {
     if (fails(fd))
       return -1;
-    return next<ssize_t (*)(int, const struct iovec *, int)>("writev")(
-      fd, vectors, count);
+    return next<ssize_t (*)(int, const struct iovec *, int)>(
+      "writev")(fd, vectors, count);
   }
 
   ssize_t

@@ -10,10 +10,10 @@
 // fixed data, the state, the manifest. Each run stops at step 200 with one
 // message naming the file, leaves checkpoint-000100 as the only checkpoint
 // (no checkpoint-000200, complete or not), and resumed from it ends with the
-// last row of energy.csv of the uninterrupted run on as many ranks. (deal.II's MPI-IO writes
-// of grid_variable.data failed unnoticed: the checkpoint was renamed
-// complete with an empty data file and a resume from it crashed; a failed
-// write of the state stopped the run with "std::bad_cast".)
+// last row of energy.csv of the uninterrupted run on as many ranks. (deal.II's
+// MPI-IO writes of grid_variable.data failed unnoticed: the checkpoint was
+// renamed complete with an empty data file and a resume from it crashed; a
+// failed write of the state stopped the run with "std::bad_cast".)
 
 #include <sys/wait.h>
 
@@ -60,11 +60,11 @@ write_case(const std::string &name, const std::string &entries = "")
 // file named @p failing failing (none if empty); the exit status.
 std::string
 run(const std::string &name,
-    const unsigned int n_ranks    = 1,
-    const std::string &failing    = "")
+    const unsigned int n_ranks = 1,
+    const std::string &failing = "")
 {
-  std::string command = GRAINMPM_EXECUTABLE " " + name + ".prm > " + name +
-                        ".log 2>&1";
+  std::string command =
+    GRAINMPM_EXECUTABLE " " + name + ".prm > " + name + ".log 2>&1";
   if (n_ranks > 1)
     command = GRAINMPM_MPIEXEC " -n " + std::to_string(n_ranks) +
               " --allow-run-as-root --oversubscribe -x LD_PRELOAD -x "
@@ -140,9 +140,8 @@ main()
     {"manifest", 1}};
   for (const auto &[file, n_ranks] : cases)
     {
-      const std::string name =
-        "fail-" + file.substr(0, file.find('.')) + "-" +
-        std::to_string(n_ranks);
+      const std::string name = "fail-" + file.substr(0, file.find('.')) + "-" +
+                               std::to_string(n_ranks);
       write_case(name);
       std::cout << file << " fails in the second checkpoint (" << n_ranks
                 << (n_ranks > 1 ? " ranks" : " rank")

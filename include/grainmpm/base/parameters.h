@@ -5,6 +5,7 @@
 #define grainmpm_base_parameters_h
 
 #include <grainmpm/base/config.h>
+#include <grainmpm/materials/material_parameters.h>
 #include <grainmpm/particles/grain_parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -36,22 +37,6 @@ namespace grainmpm
     BoundaryType type                 = BoundaryType::free_slip;
     double       friction_coefficient = 0.;
   };
-
-  /**
-   * The syntax of the `Initial stress` entries of materials and grains, for
-   * their documentation.
-   */
-  inline std::string
-  initial_stress_syntax()
-  {
-    return "Stress of the material points at the start, as expressions of "
-           "x, y (, z) separated by ';' (tension positive): in 2D "
-           "'s_xx; s_yy; s_xy' (then s_zz = nu (s_xx + s_yy) in plane strain "
-           "and 0 in plane stress) or 's_xx; s_yy; s_xy; s_zz', in 3D "
-           "'s_xx; s_yy; s_zz; s_xy; s_xz; s_yz'; e.g. the lithostatic state "
-           "of a layer of height 1 with rho g = 1 and K0 = 0.5: "
-           "'-0.5*(1 - y); -(1 - y); 0'. ";
-  }
 
   /** The name of box face @p face in the input: x-, x+, y-, y+, z-, z+. */
   inline const char *
@@ -101,42 +86,6 @@ namespace grainmpm
     std::string         two_dimensional_model_text = "plane strain";
     TwoDimensionalModel two_dimensional_model =
       TwoDimensionalModel::plane_strain;
-
-    void
-    declare(ParameterHandler &prm);
-    void
-    check();
-  };
-
-  /**
-   * The stress updates a material can have.
-   */
-  enum class ConstitutiveModelType
-  {
-    linear_elastic,
-    von_mises
-  };
-
-  /**
-   * One named material in subsection "Materials".
-   */
-  struct MaterialParameters
-  {
-    std::string           name;
-    std::string           constitutive_model_text = "linear elastic";
-    ConstitutiveModelType constitutive_model =
-      ConstitutiveModelType::linear_elastic;
-    double density        = 1.;
-    double youngs_modulus = 1.;
-    double poissons_ratio = 0.3;
-    /** von Mises: initial yield stress and plastic hardening modulus. */
-    double yield_stress      = 0.;
-    double hardening_modulus = 0.;
-    /** Photoelastic output: specimen thickness and material fringe value. */
-    double thickness             = 1.;
-    double material_fringe_value = 0.;
-    /** Expressions of the initial stress (empty: zero). */
-    std::string initial_stress;
 
     void
     declare(ParameterHandler &prm);
@@ -339,6 +288,8 @@ namespace grainmpm
     unsigned int     max_status_changes   = 2;
     /** Hysteresis band of the contact status, in units of U. */
     double status_tolerance = 0.;
+    /** One screen line per Newton iteration and per solve. */
+    bool verbose = false;
 
     void
     declare(ParameterHandler &prm);

@@ -25,6 +25,10 @@ namespace grainmpm
                   const double              poissons_ratio,
                   const TwoDimensionalModel model);
 
+    /** The elasticity of @p material. */
+    LinearElastic(const MaterialParameters &material,
+                  const TwoDimensionalModel model);
+
     SymmetricTensor<2, 3>
     update_stress(const SymmetricTensor<2, 3> &stress,
                   const Tensor<2, dim>        &displacement_gradient_increment,

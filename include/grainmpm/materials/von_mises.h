@@ -36,6 +36,36 @@ namespace grainmpm
    * residual requires. Elastic energy, density and wave speed are those of
    * the LinearElastic base.
    */
+  /**
+   * The entries of `Constitutive model = von Mises` in a material's
+   * subsection: `Yield stress` and `Hardening modulus`.
+   */
+  class VonMisesParameters : public ConstitutiveModelParameters
+  {
+  public:
+    void
+    declare(ParameterHandler &prm) override;
+
+    void
+    check(const std::string &prefix) const override;
+
+    /** Refuses an initial stress above the initial yield stress. */
+    std::string
+    check_initial_stress(const SymmetricTensor<2, 3> &stress,
+                         const std::string           &where,
+                         const std::string           &prefix) const override;
+
+    std::string
+    fingerprint() const override;
+
+    /** The initial uniaxial yield stress sigma_y. */
+    double yield_stress = 0.;
+    /** The plastic modulus H of linear isotropic hardening. */
+    double hardening_modulus = 0.;
+  };
+
+
+
   template <int dim>
   class VonMises : public LinearElastic<dim>
   {
@@ -50,6 +80,10 @@ namespace grainmpm
              const double              poissons_ratio,
              const double              yield_stress,
              const double              hardening_modulus,
+             const TwoDimensionalModel model);
+
+    /** The model of @p material, with its VonMisesParameters. */
+    VonMises(const MaterialParameters &material,
              const TwoDimensionalModel model);
 
     SymmetricTensor<2, 3>

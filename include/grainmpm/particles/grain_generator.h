@@ -13,6 +13,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace grainmpm
@@ -61,6 +62,57 @@ namespace grainmpm
              Particles::ParticleHandler<dim> &particle_handler) const;
 
   private:
+    /** A regular position in a cell of the box claimed by a grain. */
+    struct Candidate
+    {
+      /** Index (i,j,k) of the cell in the box, and of the position in it. */
+      unsigned int cell;
+      unsigned int sub_point;
+      unsigned int grain;
+    };
+
+    /** The expressions that set a grain's points at creation. */
+    struct GrainFunctions
+    {
+      std::shared_ptr<FunctionParser<dim>> initial_velocity;
+      /** The grain's initial stress, else its material's, else none. */
+      std::shared_ptr<FunctionParser<dim>> initial_stress;
+      /** The entry that gave the initial stress, for the messages. */
+      std::string stress_entry;
+    };
+
+    /**
+     * The initial stress of grain @p g (its own, else its material's, else
+     * none) and in @p entry the entry that gave it. Throws InputError for
+     * a stress on a rigid grain or a wrong number of expressions.
+     */
+    std::shared_ptr<FunctionParser<dim>>
+    parse_initial_stress(const unsigned int g, std::string &entry) const;
+
+    /**
+     * The regular positions of the locally owned @p cells (by box index)
+     * that lie inside a grain, grain by grain; in @p overlap the message
+     * for the first position claimed by two grains.
+     */
+    std::vector<Candidate>
+    find_candidates(
+      const BackgroundGrid<dim> &grid,
+      const std::vector<typename Triangulation<dim>::active_cell_iterator>
+                  &cells,
+      std::string &overlap) const;
+
+    /**
+     * The properties of a new point of grain @p g at @p point with
+     * @p volume: mass, volume, grain, initial velocity and stress, F = I.
+     * Returns what is wrong with the initial values there, or nothing.
+     */
+    std::string
+    point_properties(const unsigned int    g,
+                     const GrainFunctions &functions,
+                     const Point<dim>     &point,
+                     const double          volume,
+                     std::vector<double>  &properties) const;
+
     const Parameters<dim> &parameters;
   };
 

@@ -54,7 +54,8 @@ namespace grainmpm
      * its cell sizes say.
      */
     std::string
-    check_grid_files(const std::string &checkpoint, const std::uint64_t n_cells);
+    check_grid_files(const std::string  &checkpoint,
+                     const std::uint64_t n_cells);
 
     /**
      * The manifest of the files in @p directory (all regular files, by

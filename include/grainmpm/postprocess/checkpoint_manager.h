@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
+#include <grainmpm/particles/grain_generator.h>
 
 #include <deal.II/particles/particle_handler.h>
 
@@ -100,6 +101,16 @@ namespace grainmpm
           Particles::ParticleHandler<dim> &particle_handler,
           const std::function<void(boost::archive::binary_oarchive &)>
             &write_state);
+
+    /**
+     * What a checkpoint must have been written by to be resumed by a run
+     * with @p parameters and @p grains: the dimension, the grid, the
+     * materials' models, the grains with their materials and material
+     * points at creation. One item per line.
+     */
+    static std::string
+    fingerprint(const Parameters<dim>             &parameters,
+                const std::vector<GrainInfo<dim>> &grains);
 
   private:
     /**

@@ -24,23 +24,9 @@
 namespace grainmpm
 {
   /**
-   * Principal stress difference of @p stress: in 2D the in-plane
-   * sigma_1 - sigma_2 = sqrt((s_xx - s_yy)^2 + 4 s_xy^2) that photoelastic
-   * fringes show, in 3D the largest minus the smallest principal stress.
-   */
-  template <int dim>
-  double
-  principal_stress_difference(const SymmetricTensor<2, 3> &stress);
-
-  /** The von Mises equivalent stress sqrt(3/2 s:s) of @p stress. */
-  double
-  von_mises_stress(const SymmetricTensor<2, 3> &stress);
-
-  /**
    * Writes the ParaView files of a run (README, Running):
-   * `particles.pvd` with `particles/particles_NNNNN.vtu` (position, grain,
-   * velocity, stress tensor, principal stress difference, photoelastic
-   * fringe order, von Mises stress, volume, plastic strain) and `grid.pvd` with
+   * `particles.pvd` with `particles/particles_NNNNN.vtu` (position and the
+   * fields of particle_fields()) and `grid.pvd` with
    * `grid/grid_NNNNN.vtu` (nodal mass, centre-of-mass velocity, number of
    * grains, contact flag). The .pvd records are members, rewritten after every
    * output, so a run that stops keeps a valid time series of what was written.

@@ -7,11 +7,53 @@
 #include <grainmpm/base/step_statistics.h>
 #include <grainmpm/postprocess/energy_history.h>
 
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
 #include <limits>
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace grainmpm
 {
+  /**
+   * One row of `summary.csv`: the name of a quantity, its value and its
+   * unit (`doc/output.md` lists them all).
+   */
+  struct SummaryRow
+  {
+    std::string quantity;
+    double      value;
+    std::string unit;
+  };
+
+  /**
+   * Append to @p rows the measured figures of a run, which depend on the
+   * machine: the wall time @p wall_time of the time loop, the wall time of
+   * every section of @p timer that ran, and the peak resident memory
+   * summed over the ranks, @p memory_sum, and of the largest rank,
+   * @p memory_largest (MiB).
+   */
+  void
+  append_measured_rows(std::vector<SummaryRow>   &rows,
+                       const double               wall_time,
+                       const dealii::TimerOutput &timer,
+                       const double               memory_sum,
+                       const double               memory_largest);
+
+  /**
+   * Write @p rows as `summary.csv` to @p filename: a header
+   * `quantity,value,unit` and one row each, the values to 17 digits.
+   * Rank 0 writes the file under a temporary name and renames it when it
+   * is complete; a failed write stops every rank with an InputError that
+   * names the file. Collective.
+   */
+  void
+  write_summary_file(const std::string             &filename,
+                     const std::vector<SummaryRow> &rows,
+                     const MPI_Comm                 communicator);
+
   /**
    * What a run reports when it ends: the energies relative to the initial
    * total energy (or to the largest kinetic plus elastic energy for a run
@@ -82,6 +124,22 @@ namespace grainmpm
           const double                largest_plastic_strain,
           const double                smallest_step_tried) const;
 
+    /**
+     * The figures print() prints, with the same arguments, as rows of
+     * `summary.csv`: the same values (the energies relative to
+     * `energy_reference`), to full precision, and the totals behind the
+     * means. Every run has the same rows, those of the implicit solver
+     * being 0 for the explicit scheme; `momentum_change_relative` is left
+     * out when no point moves at the start.
+     */
+    std::vector<SummaryRow>
+    rows(const unsigned int          n_steps,
+         const double                time,
+         const types::particle_index n_lost,
+         const types::particle_index n_points,
+         const double                largest_plastic_strain,
+         const double                smallest_step_tried) const;
+
     /** Read or write the state with @p archive. */
     template <class Archive>
     void
@@ -96,6 +154,18 @@ namespace grainmpm
     }
 
   private:
+    /**
+     * Whether the run starts at rest (no initial energy): its energies are
+     * then reported relative to the largest kinetic plus elastic energy,
+     * else relative to the initial total energy.
+     */
+    bool
+    starts_at_rest() const;
+
+    /** The energy the summary's energies are relative to. */
+    double
+    energy_reference() const;
+
     const bool implicit;
 
     unsigned int          n_contact_steps = 0;

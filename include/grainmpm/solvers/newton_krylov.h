@@ -7,9 +7,12 @@
 #include <grainmpm/base/config.h>
 #include <grainmpm/base/parameters.h>
 
+#include <deal.II/base/conditional_ostream.h>
+
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <functional>
+#include <iostream>
 #include <string>
 
 namespace grainmpm
@@ -111,16 +114,25 @@ namespace grainmpm
    * the probed diagonal (eqs. 18-20) or no preconditioner, and a
    * backtracking line search on ||R||. Stops when
    * ||R|| <= Tolerance F_scale or RMS(R) <= Absolute tolerance U, U being
-   * the velocity scale.
+   * the velocity scale. With `Nonlinear solver/Verbose` each iteration
+   * writes one line to the log stream of the owner, and each solve one
+   * line with its result.
    */
   class NewtonKrylovSolver
   {
   public:
     using VectorType = NonlinearProblem::VectorType;
 
-    NewtonKrylovSolver(const NonlinearSolverParameters &nonlinear,
-                       const LinearSolverParameters    &linear,
-                       const double                     velocity_scale);
+    /**
+     * A solver with the given options and velocity scale U. The lines of
+     * `Nonlinear solver/Verbose` go to @p log (the owner makes it active
+     * on one rank only); the default stream prints nothing.
+     */
+    NewtonKrylovSolver(
+      const NonlinearSolverParameters &nonlinear,
+      const LinearSolverParameters    &linear,
+      const double                     velocity_scale,
+      const ConditionalOStream &log = ConditionalOStream(std::cout, false));
 
     /**
      * Solve R(@p x) = 0 from the initial guess @p x. On failure
@@ -153,9 +165,116 @@ namespace grainmpm
                    VectorType       &jz) const;
 
   private:
+    /**
+     * What the phases of one solve share: the scales of the stopping
+     * test, the residual norms, the forcing term, the counters of the
+     * current iteration and the work vectors.
+     */
+    struct IterationState
+    {
+      /** Work vectors with the layout of @p x. */
+      explicit IterationState(const VectorType &x);
+
+      /** ||R|| / F_scale at the current iterate. */
+      double
+      relative_norm() const
+      {
+        return scale > 0. ? norm / scale : 0.;
+      }
+
+      /** sqrt(number of unknowns). */
+      double root_n = 0.;
+      /** F_scale of the stopping test. */
+      double scale = 0.;
+      /** ||R|| at which Newton stops. */
+      double target = 0.;
+      /** ||R|| at the current and at the previous iterate. */
+      double norm          = 0.;
+      double previous_norm = 0.;
+      /** Relative tolerance of the current linear solve. */
+      double eta = 0.;
+      /** The iteration limit, possibly extended once. */
+      unsigned int limit = 0;
+      /** The contact status changed: the forcing term starts again. */
+      bool restarted = false;
+      /** The preconditioner is the problem's assembled one. */
+      bool assembled = false;
+      /** The assembled preconditioner needs a new setup. */
+      bool preconditioner_stale = false;
+      /** Krylov iterations and line search halvings of this iteration. */
+      unsigned int linear_iterations = 0;
+      unsigned int cuts              = 0;
+
+      /** R at the iterate, the trial point and its R, dx, -R, diagonal. */
+      VectorType r, trial, trial_r, dx, rhs, diagonal;
+    };
+
+    /**
+     * First linearisation and residual at @p x, the scales of the
+     * stopping test, the probed diagonal and the initial forcing term.
+     * Returns why the solve cannot start, or an empty string.
+     */
+    std::string
+    initialize(NonlinearProblem &problem,
+               const VectorType &x,
+               IterationState   &state) const;
+
+    /**
+     * Whether iteration @p k is at the iteration limit, after extending
+     * the limit once for a solve that contracts fast enough.
+     */
+    bool
+    at_iteration_limit(const unsigned int k, IterationState &state) const;
+
+    /** The forcing term eta of iteration @p k. */
+    void
+    update_forcing_term(const unsigned int k, IterationState &state) const;
+
+    /**
+     * J dx = -R at @p x with the configured Krylov solver and
+     * preconditioner. Returns why the Krylov solver failed, or an empty
+     * string (also when it stopped without reaching its tolerance).
+     */
+    std::string
+    solve_linear_system(NonlinearProblem &problem,
+                        const VectorType &x,
+                        IterationState   &state) const;
+
+    /**
+     * Backtracking on ||R|| along dx with the frozen status, then @p x the
+     * accepted point. Returns why no step was accepted, or an empty
+     * string.
+     */
+    std::string
+    line_search(NonlinearProblem &problem,
+                VectorType       &x,
+                IterationState   &state) const;
+
+    /**
+     * Re-evaluate the linearisation state at @p x (contact status) while
+     * changes are allowed, and R with a changed one. Returns why the new
+     * residual is unusable, or an empty string.
+     */
+    std::string
+    update_status(NonlinearProblem &problem,
+                  const VectorType &x,
+                  IterationState   &state,
+                  NewtonStatistics &statistics) const;
+
+    /** The log line of the iterate after @p statistics.iterations. */
+    void
+    log_iteration(const NewtonStatistics &statistics,
+                  const IterationState   &state) const;
+
+    /** The log line of the result of the solve. */
+    void
+    log_result(const NewtonStatistics &statistics,
+               const IterationState   &state) const;
+
     const NonlinearSolverParameters &nonlinear;
     const LinearSolverParameters    &linear;
     const double                     velocity_scale;
+    const ConditionalOStream         iteration_log;
   };
 } // namespace grainmpm
 

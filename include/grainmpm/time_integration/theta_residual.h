@@ -8,8 +8,8 @@
 #include <grainmpm/contact/grain_contact.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
-#include <grainmpm/solvers/elastic_preconditioner.h>
 #include <grainmpm/solvers/newton_krylov.h>
+#include <grainmpm/time_integration/implicit/elastic_preconditioner.h>
 #include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
 
@@ -152,11 +152,11 @@ namespace grainmpm
     }
 
     /**
-     * Assemble the elastic preconditioner (ElasticPreconditioner) with the
-     * slot-wise projections of the status frozen at present (the linear
-     * part of the simplified projection, probed with one unit vector per
-     * direction). @p x is not used: the elastic stiffness is that of the
-     * particles at t^n.
+     * Set up the elastic preconditioner (ElasticPreconditioner::setup())
+     * for the status frozen at present: it probes the linear part of the
+     * projection (ContactStatus::apply_symmetric_linear_part()) slot by
+     * slot. @p x is not used: the elastic stiffness is that of
+     * the particles at t^n.
      */
     void
     setup_preconditioner(const VectorType &x) override;
@@ -262,6 +262,32 @@ namespace grainmpm
                      std::vector<unsigned char> *node_in_contact,
                      ConstraintImpulses<dim>    *impulses = nullptr) const;
 
+    /**
+     * The internal forces f_s (eqs. 12-13) at the theta velocities in
+     * work_theta (ghosts updated) into work_forces. Returns whether a
+     * particle is inverted (det(I + dt grad v^theta) <= 0).
+     */
+    bool
+    assemble_internal_forces() const;
+
+    /**
+     * The raw residual R_raw = M_L^-1 M (V - v^n) - dt (f / m + g) of
+     * @p velocities into @p residual, from work_forces (and work_inertia
+     * with the blended mass); rigid slots R = V - prescribed velocity.
+     */
+    void
+    raw_residual(const VectorType &velocities, VectorType &residual) const;
+
+    /**
+     * The constrained form P R_raw + (V - P V) of the raw residual in
+     * @p residual in place, P V being work_projected; with @p simplified
+     * the linear part of the projection.
+     */
+    void
+    constrain_residual(const VectorType &velocities,
+                       VectorType       &residual,
+                       const bool        simplified) const;
+
     /** The communicator of the grid. */
     MPI_Comm
     communicator() const
@@ -304,14 +330,6 @@ namespace grainmpm
     ElasticPreconditioner<dim> preconditioner;
     /** Whether the slots changed since the preconditioner was assembled. */
     bool preconditioner_pattern_stale = true;
-    /**
-     * The linear part of the frozen projection for the preconditioner,
-     * the largest number of slots at a node (any rank), and the place of
-     * each owned and ghost slot among the slots of its node.
-     */
-    SlotProjection<dim>       projection;
-    unsigned int              slots_per_node = 0;
-    std::vector<unsigned int> slot_places;
 
     /** Work vectors of evaluate(). */
     mutable VectorType work_projected;

@@ -126,6 +126,47 @@ namespace grainmpm
                   const unsigned int                          components) const;
 
   private:
+    /** A message of reinit(): global node numbers, counts, fields, slots. */
+    using Message = std::vector<types::global_dof_index>;
+
+    /**
+     * The position of @p field in the scratch list of @p node, appended if
+     * new; sets @p overflow if the list is full.
+     */
+    unsigned int
+    find_or_add(const unsigned int node,
+                const unsigned int field,
+                bool              &overflow);
+
+    /**
+     * Send the fields of the ghost nodes to their owners, which add them
+     * to their lists; returns what this rank received, by rank.
+     */
+    std::map<unsigned int, Message>
+    exchange_ghost_fields(const BackgroundGrid<dim> &grid, bool &overflow);
+
+    /**
+     * Answer the requests @p received with the global numbers of the owned
+     * slots asked for (those of this rank start at @p first_slot), and
+     * number the ghost slots from the answers: @p ghost_positions maps a
+     * field's place in a ghost node's list to its place among the node's
+     * slots, @p ghost_slot_numbers are the global numbers of the ghost
+     * slots in their local order.
+     */
+    void
+    number_ghost_slots(
+      const BackgroundGrid<dim>             &grid,
+      const std::map<unsigned int, Message> &received,
+      const types::global_dof_index          first_slot,
+      std::vector<unsigned int>             &ghost_positions,
+      std::vector<types::global_dof_index>  &ghost_slot_numbers);
+
+    /** The vector partitioners with 1 and dim numbers per slot. */
+    void
+    make_partitioners(
+      const types::global_dof_index               first_slot,
+      const std::vector<types::global_dof_index> &ghost_slot_numbers);
+
     std::vector<unsigned int> slot_nodes;
     std::vector<unsigned int> slot_fields;
     std::vector<unsigned int> node_slot_offsets;

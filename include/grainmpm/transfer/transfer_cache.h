@@ -178,6 +178,27 @@ namespace grainmpm
     update_cells(const BackgroundGrid<dim>             &grid,
                  const Particles::ParticleHandler<dim> &particle_handler);
 
+    /**
+     * Fill the entries of every particle for Q1 shape functions (the
+     * 2^dim vertices of its cell); returns the number of entries.
+     */
+    unsigned int
+    fill_linear(const BackgroundGrid<dim>             &grid,
+                const Particles::ParticleHandler<dim> &particle_handler,
+                const std::vector<unsigned int>       &field_of_grain);
+
+    /**
+     * Fill the entries of every particle for uGIMP or cpGIMP: per axis the
+     * nodes with a positive weight for the particle's interval of
+     * @p half_width (cpGIMP: stretched by F, at most half a cell), cut at
+     * the box, and their tensor products. Returns the number of entries.
+     */
+    unsigned int
+    fill_gimp(const BackgroundGrid<dim>             &grid,
+              const Particles::ParticleHandler<dim> &particle_handler,
+              const std::vector<unsigned int>       &field_of_grain,
+              const Tensor<1, dim>                  &half_width);
+
     ShapeFunctions shape_functions = ShapeFunctions::linear;
 
     /**
