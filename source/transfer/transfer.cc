@@ -17,11 +17,6 @@ namespace grainmpm
 {
   namespace
   {
-    const char *const boundary_type_names[4] = {"free slip",
-                                                "no slip",
-                                                "friction",
-                                                "open"};
-
     /**
      * Store the new @p stress and @p plastic_strain of a particle with
      * @p properties, update its deformation gradient by the increment
@@ -57,12 +52,15 @@ namespace grainmpm
     const Parameters<dim>                                      &parameters,
     const BackgroundGrid<dim>                                  &grid,
     const std::vector<GrainInfo<dim>>                          &grains,
-    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+    const TransferOptions                                      &options)
     : parameters(parameters)
     , grid(grid)
     , grains(grains)
     , materials(materials)
+    , options(options)
     , rigid_motion(grains, parameters.grains, grid)
+    , update_check(parameters, grid, this->options)
     , field_of_grain(grains.size())
     , field_is_rigid(grains.size(), false)
   {
@@ -343,72 +341,87 @@ namespace grainmpm
     // also sends particles that left this rank's cells to their new owner.
     // Removing is collective (the handler recounts its particles): every
     // rank removes, also with nothing to remove, once any rank has some.
-    statistics.n_removed = particles_to_remove.size();
+    statistics.events.n_removed = particles_to_remove.size();
     statistics.reduce(grid.get_triangulation().get_communicator());
-    if (statistics.n_removed > 0)
+    if (statistics.events.n_removed > 0)
       {
         particle_handler.remove_particles(particles_to_remove);
         particles_to_remove.clear();
-        statistics.sorted = true;
+        statistics.events.sorted = true;
       }
-    if (statistics.sorted)
+    if (statistics.events.sorted)
       particle_handler.sort_particles_into_subdomains_and_cells();
   }
 
 
 
   template <int dim>
-  std::string
-  Transfer<dim>::check_update(const types::particle_index id,
-                              const unsigned int          grain,
-                              const Point<dim>           &old_position,
-                              const Point<dim>           &new_position,
-                              const Tensor<1, dim>       &new_velocity,
-                              const double                time,
-                              const double                dt) const
+  void
+  Transfer<dim>::update_deformable(const std::size_t        p,
+                                   const ArrayView<double> &properties,
+                                   const Point<dim>        &old_position,
+                                   const double            *new_values,
+                                   const double            *reference_values,
+                                   const double            *position_values,
+                                   const double             dt,
+                                   Point<dim>              &new_position,
+                                   Tensor<1, dim>          &new_velocity,
+                                   double                  &kinetic_change,
+                                   double &increment_energy) const
   {
-    bool   finite        = true;
-    double cells_crossed = 0.;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        finite = finite && std::isfinite(new_velocity[d]) &&
-                 std::isfinite(new_position[d]);
-        cells_crossed = std::max(cells_crossed,
-                                 std::abs(new_position[d] - old_position[d]) /
-                                   grid.cell_size()[d]);
-      }
-    const bool explicit_scheme =
-      parameters.time_stepping.scheme == TimeSteppingScheme::explicit_leapfrog;
-    if (finite &&
-        (grains[grain].rigid || !explicit_scheme || !(cells_crossed > 1.)))
-      return "";
-    // (The points of rigid grains are checked by
-    // RigidGrainMotion::move_point().)
+    using Layout = MaterialPointLayout<dim>;
+    // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC: v_p = sum S v^new;
+    // x_p += dt sum_i S_ip v_i (v^L explicit, v^theta implicit).
+    Tensor<1, dim> increment, interpolated, moved;
+    cache.for_each_entry(p, [&](const unsigned int e) {
+      const unsigned int slot  = cache.slots[e];
+      const double       shape = cache.shape_values[e];
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double v_new = new_values[slot * dim + d];
+          interpolated[d] += shape * v_new;
+          moved[d] += shape * position_values[slot * dim + d];
+          increment[d] += shape * (v_new - reference_values[slot * dim + d]);
+        }
+    });
+    const double         flip         = parameters.time_stepping.flip_fraction;
+    const Tensor<1, dim> old_velocity = Layout::get_velocity(properties);
+    new_velocity =
+      flip * (old_velocity + increment) + (1. - flip) * interpolated;
+    new_position = old_position + dt * moved;
+    kinetic_change += 0.5 * properties[Layout::mass] *
+                      (new_velocity.norm_square() - old_velocity.norm_square());
+    increment_energy +=
+      0.5 * properties[Layout::mass] * increment.norm_square();
+  }
 
-    std::ostringstream message;
-    message << "at t = " << time + dt << " (step dt = " << dt << ") ";
-    message << "material point " << id << " of grain " << grain + 1 << " ("
-            << parameters.grains[grain].source << ") ";
-    if (!finite)
-      message << "got a non-finite velocity or position: the solution "
-                 "diverged. ";
-    else
-      message << "moved " << cells_crossed
-              << " cells in one step, faster than the explicit step can "
-                 "follow: the solution is blowing up. ";
-    message << (explicit_scheme ?
-                  "Use a smaller time step; if that does not help, check the "
-                  "materials and velocities." :
-                  "Use a smaller time step, or tighten Nonlinear "
-                  "solver/Tolerance.");
-    std::ostringstream entry;
-    if (parameters.time_stepping.time_step > 0.)
-      entry << "Time stepping/Time step = "
-            << parameters.time_stepping.time_step;
-    else
-      entry << "Time stepping/CFL number = "
-            << parameters.time_stepping.cfl_number;
-    return InputError(entry.str(), message.str()).what();
+
+
+  template <int dim>
+  std::pair<double, double>
+  Transfer<dim>::grid_kinetic_changes(
+    const VectorType      &masses,
+    const VectorType      &new_velocities,
+    const VectorType      &reference_velocities,
+    const MassMatrix<dim> *mass_matrix) const
+  {
+    if (mass_matrix != nullptr && !mass_matrix->is_lumped())
+      return {mass_matrix->local_kinetic_energy(new_velocities) -
+                mass_matrix->local_kinetic_energy(reference_velocities),
+              0.};
+    double kinetic_change = 0., increment_energy = 0.;
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      if (!field_is_rigid[layout.field(s)])
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const unsigned int k      = s * dim + d;
+            const double       v_new  = new_velocities.local_element(k);
+            const double       v_old  = reference_velocities.local_element(k);
+            const double       m_half = 0.5 * masses.local_element(s);
+            kinetic_change += m_half * (v_new * v_new - v_old * v_old);
+            increment_energy += m_half * (v_new - v_old) * (v_new - v_old);
+          }
+    return {kinetic_change, increment_energy};
   }
 
 
@@ -426,31 +439,18 @@ namespace grainmpm
     StepStatistics                  &statistics,
     const MassMatrix<dim>           *mass_matrix)
   {
-    using Layout                = MaterialPointLayout<dim>;
-    const double          flip  = parameters.time_stepping.flip_fraction;
-    const Tensor<1, dim> &h     = grid.cell_size();
-    const Point<dim>     &lower = grid.lower_corner();
-    const Point<dim>     &upper = grid.upper_corner();
+    using Layout            = MaterialPointLayout<dim>;
+    const Tensor<1, dim> &h = grid.cell_size();
     double                max_speed_square        = 0.;
     double                particle_kinetic_change = 0.;
     // sum_p 1/2 m_p |dv_p|^2 of the interpolated grid velocity change.
-    double      particle_increment_energy = 0.;
-    std::string error;
-    bool        error_from_rigid = false;
-    // The explicit update-stress-first step ends with this pass: gather the
-    // particle sums of the energy history here.
-    const bool gather_sums =
-      parameters.time_stepping.scheme ==
-        TimeSteppingScheme::explicit_leapfrog &&
-      parameters.time_stepping.stress_update == StressUpdate::usf;
-    double         kinetic_energy = 0., elastic_energy = 0.;
-    Tensor<1, dim> momentum, first_moment;
+    double       particle_increment_energy = 0.;
+    std::string  error;
+    bool         error_from_rigid = false;
+    ParticleSums sums;
     velocities_new.update_ghost_values();
     velocities_p2g.update_ghost_values();
     position_velocities.update_ghost_values();
-    const double *const new_values       = velocities_new.begin();
-    const double *const reference_values = velocities_p2g.begin();
-    const double *const position_values  = position_velocities.begin();
 
     for_each_particle(
       particle_handler,
@@ -461,130 +461,91 @@ namespace grainmpm
           return;
         auto               properties   = particle->get_properties();
         const unsigned int grain        = Layout::get_grain(properties);
+        const bool         rigid        = grains[grain].rigid;
         const Point<dim>   old_position = particle->get_location();
         Point<dim>         new_position;
         Tensor<1, dim>     new_velocity;
 
-        if (grains[grain].rigid)
+        if (rigid)
           {
             // Rigid grains follow their prescribed velocity (midpoint rule).
-            if (const std::string failure =
-                  rigid_motion.move_point(grain,
-                                          particle->get_id(),
-                                          old_position,
-                                          time,
-                                          dt,
-                                          new_position,
-                                          new_velocity);
+            // A prescribed velocity that is not finite is the cause of any
+            // other error: its message wins.
+            if (std::string failure = rigid_motion.move_point(grain,
+                                                              particle->get_id(),
+                                                              old_position,
+                                                              time,
+                                                              dt,
+                                                              new_position,
+                                                              new_velocity);
                 !failure.empty())
               {
-                error            = failure;
+                error            = std::move(failure);
                 error_from_rigid = true;
                 return;
               }
           }
         else
           {
-            // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC:
-            // v_p = sum S v^new; x_p += dt sum_i S_ip v_i (v^L explicit,
-            // v^theta implicit).
-            Tensor<1, dim> increment, interpolated, moved;
-            cache.for_each_entry(p, [&](const unsigned int e) {
-              const unsigned int slot  = cache.slots[e];
-              const double       shape = cache.shape_values[e];
-              for (unsigned int d = 0; d < dim; ++d)
+            update_deformable(p,
+                              properties,
+                              old_position,
+                              velocities_new.begin(),
+                              velocities_p2g.begin(),
+                              position_velocities.begin(),
+                              dt,
+                              new_position,
+                              new_velocity,
+                              particle_kinetic_change,
+                              particle_increment_energy);
+            // A non-finite state, or a point that moves more than a cell
+            // in one step: stop with the cause instead of carrying
+            // nonsense on. A cheap test first (NaN fails every
+            // comparison); the check decides and writes the message.
+            bool suspicious = false;
+            for (unsigned int d = 0; d < dim; ++d)
+              suspicious =
+                suspicious ||
+                !(std::abs(new_velocity[d]) <=
+                  std::numeric_limits<double>::max()) ||
+                !(std::abs(new_position[d] - old_position[d]) <= h[d]);
+            if (suspicious)
+              if (const std::string failure =
+                    update_check.check(particle->get_id(),
+                                       grain,
+                                       old_position,
+                                       new_position,
+                                       new_velocity,
+                                       time,
+                                       dt);
+                  !failure.empty())
                 {
-                  const double v_new = new_values[slot * dim + d];
-                  interpolated[d] += shape * v_new;
-                  moved[d] += shape * position_values[slot * dim + d];
-                  increment[d] +=
-                    shape * (v_new - reference_values[slot * dim + d]);
+                  if (error.empty())
+                    error = failure;
+                  return;
                 }
-            });
-            const Tensor<1, dim> old_velocity =
-              Layout::get_velocity(properties);
-            new_velocity =
-              flip * (old_velocity + increment) + (1. - flip) * interpolated;
-            new_position = old_position + dt * moved;
-            particle_kinetic_change +=
-              0.5 * properties[Layout::mass] *
-              (new_velocity.norm_square() - old_velocity.norm_square());
-            particle_increment_energy +=
-              0.5 * properties[Layout::mass] * increment.norm_square();
           }
-        // A non-finite state, or (explicit) a point that moves more than
-        // a cell in one step, faster than any wave the step resolves: stop
-        // with the cause instead of carrying nonsense on. A cheap test
-        // first (NaN fails every comparison); check_update() decides and
-        // writes the message.
-        bool suspicious = false;
-        for (unsigned int d = 0; d < dim; ++d)
-          suspicious = suspicious ||
-                       !(std::abs(new_velocity[d]) <=
-                         std::numeric_limits<double>::max()) ||
-                       !(std::abs(new_position[d] - old_position[d]) <= h[d]);
-        if (suspicious)
-          if (const std::string failure = check_update(particle->get_id(),
-                                                       grain,
-                                                       old_position,
-                                                       new_position,
-                                                       new_velocity,
-                                                       time,
-                                                       dt);
-              !failure.empty())
-            {
-              if (error.empty() || grains[grain].rigid)
-                error = failure;
-              error_from_rigid = grains[grain].rigid;
-              return;
-            }
         Layout::set_velocity(new_velocity, properties);
         max_speed_square =
           std::max(max_speed_square, new_velocity.norm_square());
 
-        // Leaving the box: removed through an open face. A deformable
-        // point that the interpolated velocity carries less than half a
-        // cell through a closed (rigid) face is put back on the face: the
-        // wall constrains the nodes, not the interpolation between them.
-        // Anything more is an error.
-        for (unsigned int d = 0; d < dim; ++d)
-          if (new_position[d] < lower[d] || new_position[d] > upper[d])
-            {
-              const unsigned int face =
-                2 * d + (new_position[d] > upper[d] ? 1 : 0);
-              const BoundaryCondition &condition =
-                grid.boundary_condition(face);
-              const double overshoot = std::max(lower[d] - new_position[d],
-                                                new_position[d] - upper[d]);
-              if (condition.type != BoundaryType::open &&
-                  !grains[grain].rigid && overshoot < 0.5 * h[d])
-                {
-                  new_position[d] = (face % 2 == 0) ? lower[d] : upper[d];
-                  ++statistics.n_held_at_walls;
-                  continue;
-                }
-              if (condition.type == BoundaryType::open)
-                {
-                  particles_to_remove.push_back(particle);
-                  return;
-                }
-              std::ostringstream message;
-              message << "particle " << particle->get_id() << " of grain "
-                      << grain + 1 << " (" << parameters.grains[grain].source
-                      << ") left the background grid through the closed face "
-                      << face_name(face) << " ("
-                      << boundary_type_names[static_cast<int>(condition.type)]
-                      << ") at position (";
-              for (unsigned int e = 0; e < dim; ++e)
-                message << (e > 0 ? ", " : "") << new_position[e];
-              message << ") at time " << time + dt
-                      << ". Enlarge the grid (Background grid/Lower corner, "
-                         "Upper corner) or make that face open (Background "
-                         "grid/Boundary conditions).";
-              if (error.empty())
-                error = message.str();
-              return;
-            }
+        bool removed = false;
+        if (const std::string failure =
+              update_check.leave_box(particle->get_id(),
+                                     grain,
+                                     rigid,
+                                     new_position,
+                                     time + dt,
+                                     statistics.events.n_held_at_walls,
+                                     removed);
+            !failure.empty() || removed)
+          {
+            if (removed)
+              particles_to_remove.push_back(particle);
+            else if (error.empty())
+              error = failure;
+            return;
+          }
 
         // Stay in the cell if possible: then no sort is needed.
         Point<dim> reference = particle->get_reference_location();
@@ -594,64 +555,43 @@ namespace grainmpm
             reference[d] += (new_position[d] - old_position[d]) / h[d];
             inside = inside && reference[d] >= 0. && reference[d] <= 1.;
           }
-        if (gather_sums && !grains[grain].rigid)
+        if (options.gather_particle_sums && !rigid)
           {
             const double mass = properties[Layout::mass];
-            kinetic_energy += 0.5 * mass * new_velocity.norm_square();
-            momentum += mass * new_velocity;
-            first_moment += mass * new_position;
-            elastic_energy +=
+            sums.kinetic_energy += 0.5 * mass * new_velocity.norm_square();
+            sums.elastic_energy +=
               properties[Layout::volume] *
               materials[grains[grain].material]->strain_energy_density(
                 Layout::get_stress(properties));
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                sums.momentum[d] += mass * new_velocity[d];
+                sums.first_moment[d] += mass * new_position[d];
+              }
           }
         particle->set_location(new_position);
         if (inside)
           particle->set_reference_location(reference);
         else
-          statistics.sorted = true;
+          statistics.events.sorted = true;
       });
     throw_on_all_ranks(error, grid.get_triangulation().get_communicator());
-    statistics.max_speed = std::sqrt(max_speed_square);
-    if (gather_sums)
+    statistics.events.max_speed = std::sqrt(max_speed_square);
+    if (options.gather_particle_sums)
       {
-        statistics.has_particle_sums = true;
-        statistics.kinetic_energy    = kinetic_energy;
-        statistics.elastic_energy    = elastic_energy;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            statistics.momentum[d]     = momentum[d];
-            statistics.first_moment[d] = first_moment[d];
-          }
+        statistics.sums                   = sums;
+        statistics.sums.has_particle_sums = true;
       }
 
-    double grid_kinetic_change = 0., grid_increment_energy = 0.;
-    if (mass_matrix != nullptr && !mass_matrix->is_lumped())
-      grid_kinetic_change = mass_matrix->local_kinetic_energy(velocities_new) -
-                            mass_matrix->local_kinetic_energy(velocities_p2g);
-    else
-      for (unsigned int s = 0; s < layout.n_slots(); ++s)
-        if (!field_is_rigid[layout.field(s)])
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const unsigned int k      = s * dim + d;
-              const double       v_new  = velocities_new.local_element(k);
-              const double       v_old  = velocities_p2g.local_element(k);
-              const double       m_half = 0.5 * masses.local_element(s);
-              grid_kinetic_change += m_half * (v_new * v_new - v_old * v_old);
-              grid_increment_energy +=
-                m_half * (v_new - v_old) * (v_new - v_old);
-            }
-    statistics.transfer_energy_change =
+    const auto [grid_kinetic_change, grid_increment_energy] =
+      grid_kinetic_changes(masses, velocities_new, velocities_p2g, mass_matrix);
+    statistics.ledger.transfer_energy_change =
       particle_kinetic_change - grid_kinetic_change;
     // The explicit leapfrog's kinetic-strain exchange misses the kinetic
     // energy of the grid-scale part of the step's velocity change (see
-    // StepStatistics::leapfrog_energy_change; with USL, whose strain comes
-    // from the velocity the forces and constraints made).
-    if (parameters.time_stepping.scheme ==
-          TimeSteppingScheme::explicit_leapfrog &&
-        parameters.time_stepping.stress_update == StressUpdate::usl)
-      statistics.leapfrog_energy_change =
+    // LedgerIncrements::leapfrog_energy_change).
+    if (options.book_leapfrog_energy_change)
+      statistics.ledger.leapfrog_energy_change =
         particle_increment_energy - grid_increment_energy;
   }
 

@@ -32,7 +32,7 @@ namespace grainmpm
    *    particle velocities from v^{n+1} - v^n_P2G; positions moved with
    *    v^theta (second order at theta = 1/2).
    *
-   * If the solve fails, advance() returns `converged == false` with the
+   * If the solve fails, advance() returns `solver.converged == false` with the
    * reason and leaves the particles untouched, so that the caller can
    * retry with a smaller step.
    */
