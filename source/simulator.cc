@@ -150,10 +150,12 @@ namespace grainmpm
                           particle_handler);
 
       if (implicit)
+        // (The progress stream is active unless --quiet, on rank 0.)
         stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
                                                        grid,
                                                        grains,
-                                                       materials);
+                                                       materials,
+                                                       !progress.is_active());
       else
         stepper = std::make_unique<ExplicitLeapfrog<dim>>(parameters,
                                                           grid,

@@ -319,7 +319,8 @@ namespace grainmpm
     prm.add_parameter(
       "Verbose",
       verbose,
-      "Print one line per Newton iteration on the screen (first MPI rank): "
+      "Print one line per Newton iteration on the screen (first MPI rank; "
+      "not with grainmpm --quiet): "
       "the iteration, ||R|| / F_scale after it (iteration 0: at the initial "
       "guess), the forcing term eta, the Krylov iterations, the line "
       "search halvings and the contact status changes so far in the step; "

@@ -43,7 +43,8 @@ namespace grainmpm
     const Parameters<dim>                                      &parameters,
     const BackgroundGrid<dim>                                  &grid,
     const std::vector<GrainInfo<dim>>                          &grains,
-    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+    const bool                                                  quiet)
     : parameters(parameters)
     , transfer(parameters,
                grid,
@@ -60,7 +61,7 @@ namespace grainmpm
              velocity_scale(parameters, grains, materials),
              ConditionalOStream(
                std::cout,
-               parameters.nonlinear_solver.verbose &&
+               parameters.nonlinear_solver.verbose && !quiet &&
                  Utilities::MPI::this_mpi_process(
                    grid.get_triangulation().get_communicator()) == 0))
   {

@@ -42,11 +42,16 @@ namespace grainmpm
   public:
     using VectorType = typename TimeIntegrator<dim>::VectorType;
 
+    /**
+     * The lines of `Nonlinear solver/Verbose` go to the screen of the
+     * first rank unless @p quiet (`grainmpm --quiet`).
+     */
     ImplicitTheta(
       const Parameters<dim>                                      &parameters,
       const BackgroundGrid<dim>                                  &grid,
       const std::vector<GrainInfo<dim>>                          &grains,
-      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
+      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+      const bool quiet = false);
 
     StepStatistics
     advance(Particles::ParticleHandler<dim> &particle_handler,
