@@ -34,13 +34,13 @@ namespace grainmpm
 
   template <int dim>
   std::string
-  ParticleUpdateCheck<dim>::check(const types::particle_index id,
-                                  const unsigned int          grain,
-                                  const Point<dim>           &old_position,
-                                  const Point<dim>           &new_position,
-                                  const Tensor<1, dim>       &new_velocity,
-                                  const double                time,
-                                  const double                dt) const
+  ParticleUpdateCheck<dim>::diagnose(const types::particle_index id,
+                                     const unsigned int          grain,
+                                     const Point<dim>           &old_position,
+                                     const Point<dim>           &new_position,
+                                     const Tensor<1, dim>       &new_velocity,
+                                     const double                time,
+                                     const double                dt) const
   {
     bool   finite        = true;
     double cells_crossed = 0.;

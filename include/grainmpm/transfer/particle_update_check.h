@@ -13,6 +13,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace grainmpm
@@ -21,9 +23,9 @@ namespace grainmpm
    * The checks of the grid-to-particle update of one material point of a
    * deformable grain (Transfer::grid_to_particles()): a value that is not
    * finite or, with TransferOptions::limit_move_to_one_cell, a move of more
-   * than a cell in one step (check()), and a point that leaves the box (leave_box()). Each
-   * gives the message of the InputError that names the cause. (The
-   * points of rigid grains are checked by RigidGrainMotion.)
+   * than a cell in one step (check()), and a point that leaves the box
+   * (leave_box()). Each gives the message of the InputError that names the
+   * cause. (The points of rigid grains are checked by RigidGrainMotion.)
    */
   template <int dim>
   class ParticleUpdateCheck
@@ -51,7 +53,22 @@ namespace grainmpm
           const Point<dim>           &new_position,
           const Tensor<1, dim>       &new_velocity,
           const double                time,
-          const double                dt) const;
+          const double                dt) const
+    {
+      // A cheap test first (NaN fails every comparison): a finite velocity
+      // and a move of at most a cell are fine.
+      const Tensor<1, dim> &h          = grid.cell_size();
+      bool                  suspicious = false;
+      for (unsigned int d = 0; d < dim; ++d)
+        suspicious =
+          suspicious ||
+          !(std::abs(new_velocity[d]) <= std::numeric_limits<double>::max()) ||
+          !(std::abs(new_position[d] - old_position[d]) <= h[d]);
+      if (!suspicious)
+        return std::string();
+      return diagnose(
+        id, grain, old_position, new_position, new_velocity, time, dt);
+    }
 
     /**
      * The material point @p id of grain @p grain (rigid if @p rigid) whose
@@ -72,6 +89,16 @@ namespace grainmpm
               bool                       &removed) const;
 
   private:
+    /** check() for a suspicious point: decides and writes the message. */
+    std::string
+    diagnose(const types::particle_index id,
+             const unsigned int          grain,
+             const Point<dim>           &old_position,
+             const Point<dim>           &new_position,
+             const Tensor<1, dim>       &new_velocity,
+             const double                time,
+             const double                dt) const;
+
     const Parameters<dim>     &parameters;
     const BackgroundGrid<dim> &grid;
     const TransferOptions     &options;

@@ -23,7 +23,6 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <memory>
-#include <utility>
 #include <vector>
 
 namespace grainmpm
@@ -338,16 +337,46 @@ namespace grainmpm
                       double                  &increment_energy) const;
 
     /**
-     * The changes 1/2 sum_s m_s (|v_s^new|^2 - |v_s^ref|^2) of the grid
-     * kinetic energy of the deformable fields (first; with @p mass_matrix
-     * if given and not lumped, 1/2 v.M v) and 1/2 sum_s m_s |v_s^new -
-     * v_s^ref|^2 (second; lumped masses only, else zero), this rank's slots.
+     * Add the kinetic and elastic energy, the momentum and the first moment
+     * of the deformable particle with @p properties of grain @p grain at
+     * @p position with @p velocity to @p sums.
      */
-    std::pair<double, double>
-    grid_kinetic_changes(const VectorType      &masses,
-                         const VectorType      &new_velocities,
-                         const VectorType      &reference_velocities,
-                         const MassMatrix<dim> *mass_matrix) const;
+    void
+    add_particle_sums(const ArrayView<const double> &properties,
+                      const unsigned int             grain,
+                      const Tensor<1, dim>          &velocity,
+                      const Point<dim>              &position,
+                      ParticleSums                  &sums) const;
+
+    /**
+     * Move @p particle from @p old_position to @p new_position, keeping its
+     * cell if it is still inside; otherwise mark the handler for sorting in
+     * @p statistics.
+     */
+    void
+    move_particle(
+      typename Particles::ParticleHandler<dim>::particle_iterator &particle,
+      const Point<dim>                                            &old_position,
+      const Point<dim>                                            &new_position,
+      StepStatistics &statistics) const;
+
+    /**
+     * Book in @p ledger the energy the velocity update adds beyond the
+     * change of the grid kinetic energy of the deformable fields,
+     * @p kinetic_change - 1/2 sum_s m_s (|v_s^new|^2 - |v_s^ref|^2) (with
+     * @p mass_matrix if given and not lumped: 1/2 v.M v), and with
+     * TransferOptions::book_leapfrog_energy_change the leapfrog's
+     * @p increment_energy - 1/2 sum_s m_s |v_s^new - v_s^ref|^2; this
+     * rank's slots.
+     */
+    void
+    book_energy_changes(const VectorType      &masses,
+                        const VectorType      &new_velocities,
+                        const VectorType      &reference_velocities,
+                        const MassMatrix<dim> *mass_matrix,
+                        const double           kinetic_change,
+                        const double           increment_energy,
+                        LedgerIncrements      &ledger) const;
 
     const Parameters<dim>                                      &parameters;
     const BackgroundGrid<dim>                                  &grid;
