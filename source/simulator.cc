@@ -151,11 +151,8 @@ namespace grainmpm
 
       if (implicit)
         // (The progress stream is active unless --quiet, on rank 0.)
-        stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
-                                                       grid,
-                                                       grains,
-                                                       materials,
-                                                       !progress.is_active());
+        stepper = std::make_unique<ImplicitTheta<dim>>(
+          parameters, grid, grains, materials, !progress.is_active());
       else
         stepper = std::make_unique<ExplicitLeapfrog<dim>>(parameters,
                                                           grid,

@@ -148,16 +148,18 @@ namespace grainmpm
         << ',' << summary.total();
     for (unsigned int d = 0; d < dim; ++d)
       out << ',' << summary.momentum[d];
-    out << ',' << statistics.events.n_contact_nodes << ',' << statistics.events.n_removed
-        << ',' << statistics.solver.newton_iterations << ','
+    out << ',' << statistics.events.n_contact_nodes << ','
+        << statistics.events.n_removed << ','
+        << statistics.solver.newton_iterations << ','
         << statistics.solver.linear_iterations << ','
         << statistics.solver.residual_evaluations << ',' << std::setprecision(4)
-        << statistics.solver.residual_norm << ',' << statistics.solver.rejected << ','
-        << std::setprecision(12) << statistics.ledger.grid_energy_change << ','
-        << statistics.ledger.transfer_energy_change << ',' << summary.gravity << ','
-        << ledger.plastic_work << ',' << ledger.friction_work << ','
-        << ledger.boundary_work << ',' << ledger.transfer << ','
-        << ledger.leapfrog << ',' << ledger.balance(summary, initial) << '\n'
+        << statistics.solver.residual_norm << ',' << statistics.solver.rejected
+        << ',' << std::setprecision(12) << statistics.ledger.grid_energy_change
+        << ',' << statistics.ledger.transfer_energy_change << ','
+        << summary.gravity << ',' << ledger.plastic_work << ','
+        << ledger.friction_work << ',' << ledger.boundary_work << ','
+        << ledger.transfer << ',' << ledger.leapfrog << ','
+        << ledger.balance(summary, initial) << '\n'
         << std::flush;
   }
 

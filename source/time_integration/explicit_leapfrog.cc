@@ -69,13 +69,15 @@ namespace grainmpm
       {
         // Eqs. (8)-(10): strain from the (contact-corrected) v^n, then the
         // forces of eq. (7) from sigma^{n+1/2}, V^{n+1/2}.
-        statistics.events.n_contact_nodes += apply_constraints(velocities_old, true);
-        transfer.update_particle_states_and_forces(particle_handler,
-                                                   velocities_old,
-                                                   dt,
-                                                   parameters.physics.gravity,
-                                                   forces,
-                                                   statistics.ledger.plastic_work);
+        statistics.events.n_contact_nodes +=
+          apply_constraints(velocities_old, true);
+        transfer.update_particle_states_and_forces(
+          particle_handler,
+          velocities_old,
+          dt,
+          parameters.physics.gravity,
+          forces,
+          statistics.ledger.plastic_work);
       }
     else
       transfer.compute_forces(particle_handler,
@@ -84,7 +86,8 @@ namespace grainmpm
 
     integrate_grid_velocities(dt);
     copy_slot_vector(state.velocities_new, unconstrained_velocities);
-    statistics.events.n_contact_nodes += apply_constraints(state.velocities_new, true);
+    statistics.events.n_contact_nodes +=
+      apply_constraints(state.velocities_new, true);
     const auto [friction_work, boundary_work] =
       contact.constraint_work(layout,
                               state.masses,
@@ -124,7 +127,8 @@ namespace grainmpm
                                          velocities_old);
         contact.prescribe_rigid_velocities(layout, velocities_old, time + dt);
         // (The strain velocity only: no momentum changes hands here.)
-        statistics.events.n_contact_nodes += apply_constraints(velocities_old, false);
+        statistics.events.n_contact_nodes +=
+          apply_constraints(velocities_old, false);
         transfer.update_particle_states(particle_handler,
                                         velocities_old,
                                         dt,

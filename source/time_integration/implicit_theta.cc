@@ -46,11 +46,7 @@ namespace grainmpm
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
     const bool                                                  quiet)
     : parameters(parameters)
-    , transfer(parameters,
-               grid,
-               grains,
-               materials,
-               implicit_transfer_options())
+    , transfer(parameters, grid, grains, materials, implicit_transfer_options())
     , contact(parameters.contact,
               grid,
               transfer.get_rigid_motion(),
@@ -141,11 +137,11 @@ namespace grainmpm
     prepare(particle_handler, time, dt, false);
     final_residual.reinit(unknowns, true);
 
-    const NewtonStatistics newton = solver.solve(residual, unknowns);
-    statistics.solver.newton_iterations  = newton.iterations;
-    statistics.solver.linear_iterations  = newton.linear_iterations;
-    statistics.solver.residual_norm      = newton.residual_norm;
-    statistics.solver.status_changes     = newton.status_changes;
+    const NewtonStatistics newton       = solver.solve(residual, unknowns);
+    statistics.solver.newton_iterations = newton.iterations;
+    statistics.solver.linear_iterations = newton.linear_iterations;
+    statistics.solver.residual_norm     = newton.residual_norm;
+    statistics.solver.status_changes    = newton.status_changes;
     if (!newton.converged)
       {
         statistics.solver.converged = false;
@@ -160,9 +156,9 @@ namespace grainmpm
     residual.evaluate(unknowns, final_residual, false, true);
     unknowns -= final_residual;
     statistics.events.n_contact_nodes = residual.project(unknowns,
-                                                  state.velocities_new,
-                                                  &state.node_in_contact,
-                                                  &state.impulses);
+                                                         state.velocities_new,
+                                                         &state.node_in_contact,
+                                                         &state.impulses);
     theta_velocities.reinit(unknowns, true);
     residual.theta_velocities(state.velocities_new, theta_velocities);
     const GrainFieldLayout<dim> &layout       = transfer.get_layout();
@@ -187,7 +183,8 @@ namespace grainmpm
                         layout.get_communicator(),
                         ArrayView<double>(energies, 4));
     grid_energies = {energies[0] + energies[2], energies[1] + energies[3]};
-    statistics.ledger.grid_energy_change = grid_energies.second - grid_energies.first;
+    statistics.ledger.grid_energy_change =
+      grid_energies.second - grid_energies.first;
 
     transfer.grid_to_particles(particle_handler,
                                state.masses,

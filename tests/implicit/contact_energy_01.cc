@@ -74,7 +74,8 @@ run(const std::string &name,
       const double         elastic_before   = particle_energy(fixture, false);
       const StepStatistics statistics =
         fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
-      AssertThrow(statistics.solver.converged, ExcMessage(statistics.solver.failure));
+      AssertThrow(statistics.solver.converged,
+                  ExcMessage(statistics.solver.failure));
       const double after_particles = particle_energy(fixture);
       if (statistics.events.n_contact_nodes > 0)
         ++contact_steps;
@@ -94,7 +95,8 @@ run(const std::string &name,
                                    statistics.ledger.transfer_energy_change));
       largest_gain_pass = std::max(largest_gain_pass, pass);
       largest_gain_transfer =
-        std::max(largest_gain_transfer, statistics.ledger.transfer_energy_change);
+        std::max(largest_gain_transfer,
+                 statistics.ledger.transfer_energy_change);
       sum_pass += pass;
       sum_scheme += scheme;
       sum_transfer += statistics.ledger.transfer_energy_change;

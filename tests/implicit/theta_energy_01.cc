@@ -70,7 +70,8 @@ end
     {
       const StepStatistics statistics =
         fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
-      AssertThrow(statistics.solver.converged, ExcMessage(statistics.solver.failure));
+      AssertThrow(statistics.solver.converged,
+                  ExcMessage(statistics.solver.failure));
       newton += statistics.solver.newton_iterations;
       const auto [before, after] = fixture.stepper->get_grid_energies();
       if (step == 0)
