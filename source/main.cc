@@ -111,7 +111,8 @@ main(int argc, char *argv[])
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   std::vector<std::string>                 arguments(argv + 1, argv + argc);
-  // --quiet (-q) may stand anywhere: no header and no progress lines.
+  // --quiet (-q) may stand anywhere: no header, no progress lines and no
+  // Newton lines (Nonlinear solver/Verbose).
   const auto quiet_option =
     std::find_if(arguments.begin(),
                  arguments.end(),

@@ -94,7 +94,7 @@ namespace grainmpm
                                         time.get_previous_step_size()));
             if (!time.is_at_end())
               time.set_desired_next_step_size(
-                time_step_controller->next_step(statistics.max_speed));
+                time_step_controller->next_step(statistics.events.max_speed));
             repartition_and_checkpoint(step_number(), time);
             if (const int signal =
                   time.is_at_end() ? 0 : stop_signals.received(communicator))
@@ -150,10 +150,9 @@ namespace grainmpm
                           particle_handler);
 
       if (implicit)
-        stepper = std::make_unique<ImplicitTheta<dim>>(parameters,
-                                                       grid,
-                                                       grains,
-                                                       materials);
+        // (The progress stream is active unless --quiet, on rank 0.)
+        stepper = std::make_unique<ImplicitTheta<dim>>(
+          parameters, grid, grains, materials, !progress.is_active());
       else
         stepper = std::make_unique<ExplicitLeapfrog<dim>>(parameters,
                                                           grid,
@@ -269,11 +268,11 @@ namespace grainmpm
                                         time.get_next_step_size());
         }
         summary.add_attempt(statistics);
-        if (statistics.converged)
+        if (statistics.solver.converged)
           {
-            statistics.rejected = rejected;
+            statistics.solver.rejected = rejected;
             time_step_controller->accept(time.get_next_step_size(),
-                                         statistics.newton_iterations);
+                                         statistics.solver.newton_iterations);
             return statistics;
           }
 
@@ -283,7 +282,7 @@ namespace grainmpm
         pcout << "  step " << step_offset + time.get_step_number() + 1
               << " at t = " << time.get_current_time()
               << " rejected with dt = " << failed_step << ": "
-              << statistics.failure << std::endl;
+              << statistics.solver.failure << std::endl;
         if (!time_step_controller->reject(failed_step))
           {
             write_output(step_offset + time.get_step_number(),
@@ -295,7 +294,7 @@ namespace grainmpm
             std::ostringstream message;
             message << "the implicit step from t = " << time.get_current_time()
                     << " failed with dt = " << failed_step << " ("
-                    << statistics.failure << ") and "
+                    << statistics.solver.failure << ") and "
                     << (adaptive ?
                           "halving it would go below the minimum time step " +
                             std::to_string(
@@ -320,8 +319,8 @@ namespace grainmpm
                               const StepStatistics &statistics)
   {
     summary.add_step(statistics);
-    if (statistics.n_removed > 0)
-      pcout << "  " << statistics.n_removed
+    if (statistics.events.n_removed > 0)
+      pcout << "  " << statistics.events.n_removed
             << " particles left through open faces at t = "
             << time.get_current_time() << std::endl;
 

@@ -64,7 +64,7 @@ main(int argc, char *argv[])
   unsigned int n_sorted = 0;
   const auto   start    = std::chrono::steady_clock::now();
   for (unsigned int step = 1; step <= n_steps; ++step)
-    n_sorted += stepper.advance(particle_handler, step * dt, dt).sorted;
+    n_sorted += stepper.advance(particle_handler, step * dt, dt).events.sorted;
   const double seconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
       .count();

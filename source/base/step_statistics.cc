@@ -13,46 +13,46 @@ namespace grainmpm
   {
     if (Utilities::MPI::n_mpi_processes(communicator) == 1)
       return;
-    constexpr unsigned int n_sums       = 16;
-    double                 sums[n_sums] = {static_cast<double>(n_contact_nodes),
-                                           static_cast<double>(n_removed),
-                                           static_cast<double>(n_held_at_walls),
-                                           transfer_energy_change,
-                                           plastic_work,
-                                           friction_work,
-                                           boundary_work,
-                                           leapfrog_energy_change,
-                                           kinetic_energy,
-                                           elastic_energy,
-                                           momentum[0],
-                                           momentum[1],
-                                           momentum[2],
-                                           first_moment[0],
-                                           first_moment[1],
-                                           first_moment[2]};
-    Utilities::MPI::sum(ArrayView<const double>(sums, n_sums),
+    constexpr unsigned int n_sums = 16;
+    double values[n_sums] = {static_cast<double>(events.n_contact_nodes),
+                             static_cast<double>(events.n_removed),
+                             static_cast<double>(events.n_held_at_walls),
+                             ledger.transfer_energy_change,
+                             ledger.plastic_work,
+                             ledger.friction_work,
+                             ledger.boundary_work,
+                             ledger.leapfrog_energy_change,
+                             sums.kinetic_energy,
+                             sums.elastic_energy,
+                             sums.momentum[0],
+                             sums.momentum[1],
+                             sums.momentum[2],
+                             sums.first_moment[0],
+                             sums.first_moment[1],
+                             sums.first_moment[2]};
+    Utilities::MPI::sum(ArrayView<const double>(values, n_sums),
                         communicator,
-                        ArrayView<double>(sums, n_sums));
-    n_contact_nodes        = static_cast<unsigned int>(sums[0]);
-    n_removed              = static_cast<types::particle_index>(sums[1]);
-    n_held_at_walls        = static_cast<types::particle_index>(sums[2]);
-    transfer_energy_change = sums[3];
-    plastic_work           = sums[4];
-    friction_work          = sums[5];
-    boundary_work          = sums[6];
-    leapfrog_energy_change = sums[7];
-    kinetic_energy         = sums[8];
-    elastic_energy         = sums[9];
+                        ArrayView<double>(values, n_sums));
+    events.n_contact_nodes = static_cast<unsigned int>(values[0]);
+    events.n_removed       = static_cast<types::particle_index>(values[1]);
+    events.n_held_at_walls = static_cast<types::particle_index>(values[2]);
+    ledger.transfer_energy_change = values[3];
+    ledger.plastic_work           = values[4];
+    ledger.friction_work          = values[5];
+    ledger.boundary_work          = values[6];
+    ledger.leapfrog_energy_change = values[7];
+    sums.kinetic_energy           = values[8];
+    sums.elastic_energy           = values[9];
     for (unsigned int d = 0; d < 3; ++d)
       {
-        momentum[d]     = sums[10 + d];
-        first_moment[d] = sums[13 + d];
+        sums.momentum[d]     = values[10 + d];
+        sums.first_moment[d] = values[13 + d];
       }
-    double maxima[2] = {max_speed, sorted ? 1. : 0.};
+    double maxima[2] = {events.max_speed, events.sorted ? 1. : 0.};
     Utilities::MPI::max(ArrayView<const double>(maxima, 2),
                         communicator,
                         ArrayView<double>(maxima, 2));
-    max_speed = maxima[0];
-    sorted    = maxima[1] > 0.;
+    events.max_speed = maxima[0];
+    events.sorted    = maxima[1] > 0.;
   }
 } // namespace grainmpm

@@ -17,48 +17,51 @@ namespace grainmpm
 
 
     /**
-     * The partner velocity v_ref of a node from its velocities: the first
-     * rigid field's (infinite mass) or the centre of mass of the
-     * deformable fields (Cummins & Brackbill eq. 6). Also returns the
-     * deformable fields' momentum, mass and number. False if the node has
-     * neither a rigid field nor deformable mass.
+     * What the law needs of a node's fields before it decides: the partner
+     * velocity v_ref (the first rigid field's, of infinite mass, or the
+     * centre of mass of the deformable fields, Cummins & Brackbill eq. 6)
+     * and the deformable fields' momentum, mass and number.
      */
     template <int dim>
-    bool
-    node_reference(const unsigned int    n_fields,
-                   const double         *masses,
-                   const bool           *rigid,
-                   const Tensor<1, dim> *velocities,
-                   Tensor<1, dim>       &reference,
-                   Tensor<1, dim>       &momentum,
-                   double               &total_mass,
-                   int                  &rigid_field,
-                   unsigned int         &n_deformable)
+    struct NodeReference
     {
-      momentum     = Tensor<1, dim>();
-      total_mass   = 0.;
-      rigid_field  = -1;
-      n_deformable = 0;
-      for (unsigned int k = 0; k < n_fields; ++k)
-        if (rigid[k])
+      /** False if the node has neither a rigid field nor deformable mass. */
+      bool           exists = false;
+      Tensor<1, dim> velocity;
+      Tensor<1, dim> momentum;
+      double         total_mass   = 0.;
+      int            rigid_field  = -1;
+      unsigned int   n_deformable = 0;
+    };
+
+
+
+    /** The NodeReference of @p node. */
+    template <int dim>
+    NodeReference<dim>
+    node_reference(const ContactNode<dim> &node)
+    {
+      NodeReference<dim> result;
+      for (unsigned int k = 0; k < node.n; ++k)
+        if (node.rigid[k])
           {
-            if (rigid_field < 0)
-              rigid_field = k;
+            if (result.rigid_field < 0)
+              result.rigid_field = k;
           }
         else
           {
-            total_mass += masses[k];
-            momentum += masses[k] * velocities[k];
-            ++n_deformable;
+            result.total_mass += node.masses[k];
+            result.momentum += node.masses[k] * node.velocities[k];
+            ++result.n_deformable;
           }
-      reference = Tensor<1, dim>();
-      if (rigid_field >= 0)
-        reference = velocities[rigid_field];
-      else if (total_mass > 0.)
-        reference = momentum / total_mass;
+      result.exists = true;
+      if (result.rigid_field >= 0)
+        result.velocity = node.velocities[result.rigid_field];
+      else if (result.total_mass > 0.)
+        result.velocity = result.momentum / result.total_mass;
       else
-        return false;
-      return true;
+        result.exists = false;
+      return result;
     }
 
 
@@ -217,22 +220,11 @@ namespace grainmpm
           node.states[k]          = ContactState::free;
           node.slip_directions[k] = Tensor<1, dim>();
         }
-    Tensor<1, dim> reference, momentum_before;
-    double         total_mass;
-    int            rigid_field;
-    unsigned int   n_deformable;
-    const bool     has_reference = node_reference(node.n,
-                                              node.masses,
-                                              node.rigid,
-                                              node.velocities,
-                                              reference,
-                                              momentum_before,
-                                              total_mass,
-                                              rigid_field,
-                                              n_deformable);
+    const NodeReference<dim> partner   = node_reference(node);
+    const Tensor<1, dim>    &reference = partner.velocity;
     if (node.reference != nullptr)
       *node.reference = reference;
-    if (!has_reference)
+    if (!partner.exists)
       return false;
 
     const bool corrected = decide_and_project(options,
@@ -250,7 +242,7 @@ namespace grainmpm
     // v_cm" satisfies both, so the alternation has a fixed point; it
     // converges in a few passes). End on exact momentum. Only the first
     // pass's decisions are recorded (and have the hysteresis).
-    if (corrected && rigid_field < 0 && n_deformable > 2)
+    if (corrected && partner.rigid_field < 0 && partner.n_deformable > 2)
       {
         double velocity_scale = 0.;
         for (unsigned int k = 0; k < node.n; ++k)
@@ -259,14 +251,17 @@ namespace grainmpm
         for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
           if (restore_momentum(node.n,
                                node.masses,
-                               momentum_before,
-                               total_mass,
+                               partner.momentum,
+                               partner.total_mass,
                                node.velocities) <= 1e-14 * velocity_scale ||
               !decide_and_project(
                 options, node, reference, nullptr, nullptr, nullptr))
             break;
-        restore_momentum(
-          node.n, node.masses, momentum_before, total_mass, node.velocities);
+        restore_momentum(node.n,
+                         node.masses,
+                         partner.momentum,
+                         partner.total_mass,
+                         node.velocities);
       }
     return corrected;
   }
@@ -281,19 +276,8 @@ namespace grainmpm
                                        const double            mu,
                                        const Tensor<1, dim>   *fixed_reference)
   {
-    Tensor<1, dim> reference, momentum_before;
-    double         total_mass;
-    int            rigid_field;
-    unsigned int   n_deformable;
-    node_reference(node.n,
-                   node.masses,
-                   node.rigid,
-                   node.velocities,
-                   reference,
-                   momentum_before,
-                   total_mass,
-                   rigid_field,
-                   n_deformable);
+    const NodeReference<dim> partner   = node_reference(node);
+    Tensor<1, dim>           reference = partner.velocity;
     if (fixed_reference != nullptr)
       reference = *fixed_reference;
 
@@ -309,9 +293,13 @@ namespace grainmpm
     // map stays linear in the velocities; alternating it with the frozen
     // projection until the shift vanishes converges slowly without
     // friction and diverges with it (tests/contact/frozen_multi_grain_01).
-    if (fixed_reference == nullptr && rigid_field < 0 && n_deformable > 2)
-      restore_momentum(
-        node.n, node.masses, momentum_before, total_mass, node.velocities);
+    if (fixed_reference == nullptr && partner.rigid_field < 0 &&
+        partner.n_deformable > 2)
+      restore_momentum(node.n,
+                       node.masses,
+                       partner.momentum,
+                       partner.total_mass,
+                       node.velocities);
   }
 
 

@@ -113,16 +113,16 @@ namespace grainmpm
   EnergySummary<dim>
   EnergyHistory<dim>::summarize(const StepStatistics &statistics)
   {
-    Assert(statistics.has_particle_sums && have_initial_moment,
+    Assert(statistics.sums.has_particle_sums && have_initial_moment,
            ExcInternalError());
     EnergySummary<dim> summary;
-    summary.kinetic = statistics.kinetic_energy;
-    summary.elastic = statistics.elastic_energy;
+    summary.kinetic = statistics.sums.kinetic_energy;
+    summary.elastic = statistics.sums.elastic_energy;
     Tensor<1, dim> moment;
     for (unsigned int d = 0; d < dim; ++d)
       {
-        summary.momentum[d] = statistics.momentum[d];
-        moment[d]           = statistics.first_moment[d];
+        summary.momentum[d] = statistics.sums.momentum[d];
+        moment[d]           = statistics.sums.first_moment[d];
       }
     summary.gravity = -gravity * (moment - initial_moment);
     return summary;
@@ -148,16 +148,18 @@ namespace grainmpm
         << ',' << summary.total();
     for (unsigned int d = 0; d < dim; ++d)
       out << ',' << summary.momentum[d];
-    out << ',' << statistics.n_contact_nodes << ',' << statistics.n_removed
-        << ',' << statistics.newton_iterations << ','
-        << statistics.linear_iterations << ','
-        << statistics.residual_evaluations << ',' << std::setprecision(4)
-        << statistics.residual_norm << ',' << statistics.rejected << ','
-        << std::setprecision(12) << statistics.grid_energy_change << ','
-        << statistics.transfer_energy_change << ',' << summary.gravity << ','
-        << ledger.plastic_work << ',' << ledger.friction_work << ','
-        << ledger.boundary_work << ',' << ledger.transfer << ','
-        << ledger.leapfrog << ',' << ledger.balance(summary, initial) << '\n'
+    out << ',' << statistics.events.n_contact_nodes << ','
+        << statistics.events.n_removed << ','
+        << statistics.solver.newton_iterations << ','
+        << statistics.solver.linear_iterations << ','
+        << statistics.solver.residual_evaluations << ',' << std::setprecision(4)
+        << statistics.solver.residual_norm << ',' << statistics.solver.rejected
+        << ',' << std::setprecision(12) << statistics.ledger.grid_energy_change
+        << ',' << statistics.ledger.transfer_energy_change << ','
+        << summary.gravity << ',' << ledger.plastic_work << ','
+        << ledger.friction_work << ',' << ledger.boundary_work << ','
+        << ledger.transfer << ',' << ledger.leapfrog << ','
+        << ledger.balance(summary, initial) << '\n'
         << std::flush;
   }
 

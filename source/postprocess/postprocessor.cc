@@ -85,7 +85,7 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler,
     const StepStatistics                  &statistics)
   {
-    return statistics.has_particle_sums ?
+    return statistics.sums.has_particle_sums ?
              energy_history->summarize(statistics) :
              energy_history->compute(particle_handler);
   }

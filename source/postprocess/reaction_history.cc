@@ -3,6 +3,7 @@
 
 #include <grainmpm/postprocess/history_file.h>
 #include <grainmpm/postprocess/reaction_history.h>
+#include <grainmpm/transfer/rigid_grain_motion.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -147,16 +148,11 @@ namespace grainmpm
       }
 
     // The centres move as the rigid grains' points do (midpoint rule).
-    Vector<double> velocity(dim);
     for (unsigned int r = 0; r < rigid_grains.size(); ++r)
-      {
-        FunctionParser<dim> &function =
-          *grains[rigid_grains[r]].prescribed_velocity;
-        function.set_time(time - 0.5 * dt);
-        function.vector_value(centres[r], velocity);
-        for (unsigned int d = 0; d < dim; ++d)
-          centres[r][d] += dt * velocity[d];
-      }
+      centres[r] = RigidGrainMotion<dim>::move(grains[rigid_grains[r]],
+                                               centres[r],
+                                               time - 0.5 * dt,
+                                               dt);
   }
 
 

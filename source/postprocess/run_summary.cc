@@ -90,8 +90,8 @@ namespace grainmpm
   void
   RunSummary<dim>::add_attempt(const StepStatistics &statistics)
   {
-    residual_evaluations += statistics.residual_evaluations;
-    if (!statistics.converged)
+    residual_evaluations += statistics.solver.residual_evaluations;
+    if (!statistics.solver.converged)
       ++rejected;
   }
 
@@ -103,17 +103,17 @@ namespace grainmpm
   {
     if (implicit)
       {
-        newton_iterations += statistics.newton_iterations;
-        linear_iterations += statistics.linear_iterations;
-        status_changes += statistics.status_changes;
+        newton_iterations += statistics.solver.newton_iterations;
+        linear_iterations += statistics.solver.linear_iterations;
+        status_changes += statistics.solver.status_changes;
         max_newton_iterations =
-          std::max(max_newton_iterations, statistics.newton_iterations);
+          std::max(max_newton_iterations, statistics.solver.newton_iterations);
       }
-    grid_energy_change += statistics.grid_energy_change;
+    grid_energy_change += statistics.ledger.grid_energy_change;
     ledger.add(statistics);
-    n_removed += statistics.n_removed;
-    n_held_at_walls += statistics.n_held_at_walls;
-    if (statistics.n_contact_nodes > 0)
+    n_removed += statistics.events.n_removed;
+    n_held_at_walls += statistics.events.n_held_at_walls;
+    if (statistics.events.n_contact_nodes > 0)
       ++n_contact_steps;
   }
 

@@ -5,6 +5,32 @@
 
 namespace grainmpm
 {
+  namespace
+  {
+    /**
+     * What the explicit step asks of the transfer: a point that moves more
+     * than a cell in one step is a blow-up; the update-stress-first step
+     * gathers the particle sums in its last pass; USL books the leapfrog's
+     * energy change.
+     */
+    TransferOptions
+    explicit_transfer_options(const TimeSteppingParameters &time_stepping)
+    {
+      TransferOptions options;
+      options.limit_move_to_one_cell = true;
+      options.divergence_advice =
+        "Use a smaller time step; if that does not help, check the "
+        "materials and velocities.";
+      options.gather_particle_sums =
+        time_stepping.stress_update == StressUpdate::usf;
+      options.book_leapfrog_energy_change =
+        time_stepping.stress_update == StressUpdate::usl;
+      return options;
+    }
+  } // namespace
+
+
+
   template <int dim>
   ExplicitLeapfrog<dim>::ExplicitLeapfrog(
     const Parameters<dim>                                      &parameters,
@@ -12,8 +38,15 @@ namespace grainmpm
     const std::vector<GrainInfo<dim>>                          &grains,
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
     : parameters(parameters)
-    , transfer(parameters, grid, grains, materials)
-    , contact(parameters.contact, grid, grains, transfer.get_field_is_rigid())
+    , transfer(parameters,
+               grid,
+               grains,
+               materials,
+               explicit_transfer_options(parameters.time_stepping))
+    , contact(parameters.contact,
+              grid,
+              transfer.get_rigid_motion(),
+              transfer.get_field_is_rigid())
   {}
 
 
@@ -36,13 +69,15 @@ namespace grainmpm
       {
         // Eqs. (8)-(10): strain from the (contact-corrected) v^n, then the
         // forces of eq. (7) from sigma^{n+1/2}, V^{n+1/2}.
-        statistics.n_contact_nodes += apply_constraints(velocities_old, true);
-        transfer.update_particle_states_and_forces(particle_handler,
-                                                   velocities_old,
-                                                   dt,
-                                                   parameters.physics.gravity,
-                                                   forces,
-                                                   statistics.plastic_work);
+        statistics.events.n_contact_nodes +=
+          apply_constraints(velocities_old, true);
+        transfer.update_particle_states_and_forces(
+          particle_handler,
+          velocities_old,
+          dt,
+          parameters.physics.gravity,
+          forces,
+          statistics.ledger.plastic_work);
       }
     else
       transfer.compute_forces(particle_handler,
@@ -51,17 +86,16 @@ namespace grainmpm
 
     integrate_grid_velocities(dt);
     copy_slot_vector(state.velocities_new, unconstrained_velocities);
-    statistics.n_contact_nodes += apply_constraints(state.velocities_new, true);
+    statistics.events.n_contact_nodes +=
+      apply_constraints(state.velocities_new, true);
     const auto [friction_work, boundary_work] =
       contact.constraint_work(layout,
                               state.masses,
                               unconstrained_velocities,
                               state.velocities_new,
                               state.velocities_new);
-    statistics.friction_work += friction_work;
-    statistics.boundary_work += boundary_work;
-    contact.prescribe_rigid_velocities(layout, state.velocities_new, time + dt);
-
+    statistics.ledger.friction_work += friction_work;
+    statistics.ledger.boundary_work += boundary_work;
     transfer.grid_to_particles(particle_handler,
                                state.masses,
                                state.velocities_new,
@@ -70,6 +104,9 @@ namespace grainmpm
                                time,
                                dt,
                                statistics);
+    // (After the particles, which read no rigid slot: a prescribed velocity
+    // that is not finite at t + dt is reported at a material point.)
+    contact.prescribe_rigid_velocities(layout, state.velocities_new, time + dt);
 
     if (parameters.time_stepping.stress_update == StressUpdate::usl)
       // The strain velocity is v^{n+1}, the constrained velocity that moved
@@ -77,7 +114,7 @@ namespace grainmpm
       transfer.update_particle_states(particle_handler,
                                       state.velocities_new,
                                       dt,
-                                      statistics.plastic_work);
+                                      statistics.ledger.plastic_work);
     else if (parameters.time_stepping.stress_update == StressUpdate::musl)
       {
         // The strain velocity remapped from the new particle momenta.
@@ -90,11 +127,12 @@ namespace grainmpm
                                          velocities_old);
         contact.prescribe_rigid_velocities(layout, velocities_old, time + dt);
         // (The strain velocity only: no momentum changes hands here.)
-        statistics.n_contact_nodes += apply_constraints(velocities_old, false);
+        statistics.events.n_contact_nodes +=
+          apply_constraints(velocities_old, false);
         transfer.update_particle_states(particle_handler,
                                         velocities_old,
                                         dt,
-                                        statistics.plastic_work);
+                                        statistics.ledger.plastic_work);
       }
 
     transfer.finish_step(particle_handler, statistics);
@@ -115,8 +153,6 @@ namespace grainmpm
                                                          state.normals,
                                                          velocities,
                                                          &state.node_in_contact,
-                                                         0.,
-                                                         nullptr,
                                                          impulses);
     contact.apply_walls(layout, velocities, &state.masses, impulses);
     return n_contact;

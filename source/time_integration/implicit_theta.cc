@@ -24,6 +24,16 @@ namespace grainmpm
       const double wave_speed = largest_wave_speed(grains, materials);
       return wave_speed > 0. ? wave_speed : 1.;
     }
+
+    /** What the implicit step asks of the transfer: only the advice. */
+    TransferOptions
+    implicit_transfer_options()
+    {
+      TransferOptions options;
+      options.divergence_advice =
+        "Use a smaller time step, or tighten Nonlinear solver/Tolerance.";
+      return options;
+    }
   } // namespace
 
 
@@ -33,17 +43,21 @@ namespace grainmpm
     const Parameters<dim>                                      &parameters,
     const BackgroundGrid<dim>                                  &grid,
     const std::vector<GrainInfo<dim>>                          &grains,
-    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials)
+    const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+    const bool                                                  quiet)
     : parameters(parameters)
-    , transfer(parameters, grid, grains, materials)
-    , contact(parameters.contact, grid, grains, transfer.get_field_is_rigid())
+    , transfer(parameters, grid, grains, materials, implicit_transfer_options())
+    , contact(parameters.contact,
+              grid,
+              transfer.get_rigid_motion(),
+              transfer.get_field_is_rigid())
     , residual(contact, grid, materials)
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
              velocity_scale(parameters, grains, materials),
              ConditionalOStream(
                std::cout,
-               parameters.nonlinear_solver.verbose &&
+               parameters.nonlinear_solver.verbose && !quiet &&
                  Utilities::MPI::this_mpi_process(
                    grid.get_triangulation().get_communicator()) == 0))
   {
@@ -80,8 +94,6 @@ namespace grainmpm
                           state.normals,
                           velocities_old,
                           &state.node_in_contact,
-                          0.,
-                          nullptr,
                           &state.impulses);
     contact.apply_walls(layout, velocities_old, &state.masses, &state.impulses);
     copy_slot_vector(velocities_old, rigid_velocities);
@@ -125,16 +137,16 @@ namespace grainmpm
     prepare(particle_handler, time, dt, false);
     final_residual.reinit(unknowns, true);
 
-    const NewtonStatistics newton = solver.solve(residual, unknowns);
-    statistics.newton_iterations  = newton.iterations;
-    statistics.linear_iterations  = newton.linear_iterations;
-    statistics.residual_norm      = newton.residual_norm;
-    statistics.status_changes     = newton.status_changes;
+    const NewtonStatistics newton       = solver.solve(residual, unknowns);
+    statistics.solver.newton_iterations = newton.iterations;
+    statistics.solver.linear_iterations = newton.linear_iterations;
+    statistics.solver.residual_norm     = newton.residual_norm;
+    statistics.solver.status_changes    = newton.status_changes;
     if (!newton.converged)
       {
-        statistics.converged = false;
-        statistics.failure   = newton.failure;
-        statistics.residual_evaluations =
+        statistics.solver.converged = false;
+        statistics.solver.failure   = newton.failure;
+        statistics.solver.residual_evaluations =
           residual.n_residual_evaluations() - evaluations_at_start;
         return statistics;
       }
@@ -143,17 +155,17 @@ namespace grainmpm
     // projected with the converged status.
     residual.evaluate(unknowns, final_residual, false, true);
     unknowns -= final_residual;
-    statistics.n_contact_nodes = residual.project(unknowns,
-                                                  state.velocities_new,
-                                                  &state.node_in_contact,
-                                                  &state.impulses);
+    statistics.events.n_contact_nodes = residual.project(unknowns,
+                                                         state.velocities_new,
+                                                         &state.node_in_contact,
+                                                         &state.impulses);
     theta_velocities.reinit(unknowns, true);
     residual.theta_velocities(state.velocities_new, theta_velocities);
     const GrainFieldLayout<dim> &layout       = transfer.get_layout();
     const auto [friction_work, boundary_work] = contact.constraint_work(
       layout, state.masses, unknowns, state.velocities_new, theta_velocities);
-    statistics.friction_work += friction_work;
-    statistics.boundary_work += boundary_work;
+    statistics.ledger.friction_work += friction_work;
+    statistics.ledger.boundary_work += boundary_work;
 
     // Grid energies before and after (deformable slots).
     const double kinetic_old =
@@ -165,13 +177,14 @@ namespace grainmpm
     transfer.update_particle_states(particle_handler,
                                     theta_velocities,
                                     dt,
-                                    statistics.plastic_work,
+                                    statistics.ledger.plastic_work,
                                     &energies[3]);
     Utilities::MPI::sum(ArrayView<const double>(energies, 4),
                         layout.get_communicator(),
                         ArrayView<double>(energies, 4));
     grid_energies = {energies[0] + energies[2], energies[1] + energies[3]};
-    statistics.grid_energy_change = grid_energies.second - grid_energies.first;
+    statistics.ledger.grid_energy_change =
+      grid_energies.second - grid_energies.first;
 
     transfer.grid_to_particles(particle_handler,
                                state.masses,
@@ -183,7 +196,7 @@ namespace grainmpm
                                statistics,
                                &mass_matrix);
     transfer.finish_step(particle_handler, statistics);
-    statistics.residual_evaluations =
+    statistics.solver.residual_evaluations =
       residual.n_residual_evaluations() - evaluations_at_start;
     return statistics;
   }

@@ -91,7 +91,7 @@ namespace grainmpm
         slot_active[s] = masses.local_element(s) > mass_threshold;
       }
 
-    contact.reinit_status(*layout, status);
+    status.reinit(contact, *layout);
     preconditioner_pattern_stale = true;
 
     work_projected.reinit(old_velocities, true);
@@ -125,13 +125,13 @@ namespace grainmpm
     }
 
     const ContactStatus<dim> old_status = status;
-    contact.freeze(*layout,
-                   *masses,
-                   *normals,
-                   trial_velocities,
-                   mass_threshold,
-                   status,
-                   status_band);
+    status.freeze(contact,
+                  *layout,
+                  *masses,
+                  *normals,
+                  trial_velocities,
+                  mass_threshold,
+                  status_band);
     // The change on any rank (the solver's decisions must agree).
     unsigned int change = 0;
     if (old_status.slot_state != status.slot_state ||
@@ -157,7 +157,8 @@ namespace grainmpm
       unknown,
       *masses,
       [this](VectorType &v) {
-        apply_projection(v, GrainContact<dim>::Reference::linear, nullptr);
+        status.apply_symmetric_linear_part(
+          contact, *layout, *masses, *normals, v);
       },
       transfer->get_cache(),
       particle_models,
@@ -193,10 +194,7 @@ namespace grainmpm
                               ConstraintImpulses<dim>    *impulses) const
   {
     copy_slot_vector(velocities, projected);
-    return apply_projection(projected,
-                            GrainContact<dim>::Reference::from_velocities,
-                            node_in_contact,
-                            impulses);
+    return apply_projection(projected, false, node_in_contact, impulses);
   }
 
 
@@ -204,43 +202,36 @@ namespace grainmpm
   template <int dim>
   unsigned int
   ThetaResidual<dim>::apply_projection(
-    VectorType                                 &v,
-    const typename GrainContact<dim>::Reference reference,
-    std::vector<unsigned char>                 *node_in_contact,
-    ConstraintImpulses<dim>                    *impulses) const
+    VectorType                 &v,
+    const bool                  simplified,
+    std::vector<unsigned char> *node_in_contact,
+    ConstraintImpulses<dim>    *impulses) const
   {
-    // v -> (1 - theta) v^n + theta v, project, and back. The map is affine;
-    // differences of velocities (Reference::zero) see its linear part,
-    // which is the projection itself. With every slot free it is the
-    // identity.
+    // v -> (1 - theta) v^n + theta v, project, and back. The map is affine
+    // (its linear part, on differences of velocities, is
+    // ContactStatus::apply_simplified_linear_part()). With every slot free
+    // it is the identity.
     if (!status.any_active)
       return 0;
-    const bool affine    = (reference != GrainContact<dim>::Reference::zero &&
-                         reference != GrainContact<dim>::Reference::linear);
     const unsigned int n = v.locally_owned_size();
-    if (affine)
-      for (unsigned int k = 0; k < n; ++k)
-        v.local_element(k) = (1. - theta) * old_velocities->local_element(k) +
-                             theta * v.local_element(k);
+    for (unsigned int k = 0; k < n; ++k)
+      v.local_element(k) = (1. - theta) * old_velocities->local_element(k) +
+                           theta * v.local_element(k);
     // The projection changes the theta velocity; the end velocity changes
     // by that over theta.
     if (impulses != nullptr)
-      impulses->scale = affine ? 1. / theta : 1.;
-    const unsigned int n_active = contact.apply_frozen(*layout,
-                                                       *masses,
-                                                       *normals,
-                                                       status,
-                                                       reference,
-                                                       v,
-                                                       node_in_contact,
-                                                       impulses);
+      impulses->scale = 1. / theta;
+    const unsigned int n_active =
+      simplified ?
+        status.apply_simplified(contact, *layout, *masses, *normals, v) :
+        status.apply(
+          contact, *layout, *masses, *normals, v, node_in_contact, impulses);
     if (impulses != nullptr)
       impulses->scale = 1.;
-    if (affine)
-      for (unsigned int k = 0; k < n; ++k)
-        v.local_element(k) = (v.local_element(k) -
-                              (1. - theta) * old_velocities->local_element(k)) /
-                             theta;
+    for (unsigned int k = 0; k < n; ++k)
+      v.local_element(k) =
+        (v.local_element(k) - (1. - theta) * old_velocities->local_element(k)) /
+        theta;
     return n_active;
   }
 
@@ -267,16 +258,12 @@ namespace grainmpm
                                const bool        simplified,
                                const bool        raw) const
   {
-    using Reference = typename GrainContact<dim>::Reference;
     ++evaluation_count;
 
     // v^theta from the projected trial velocities.
     work_projected = velocities;
     const bool constrained =
-      apply_projection(work_projected,
-                       simplified ? Reference::frozen :
-                                    Reference::from_velocities,
-                       nullptr) > 0 ||
+      apply_projection(work_projected, simplified, nullptr) > 0 ||
       !status.wall_slots.empty();
     theta_velocities(work_projected, work_theta);
     work_theta.update_ghost_values();
@@ -408,8 +395,6 @@ namespace grainmpm
                                          VectorType       &residual,
                                          const bool        simplified) const
   {
-    using Reference = typename GrainContact<dim>::Reference;
-
     // Constrained form R = P R_raw + (V - P V): the frozen projection P is
     // the mass-orthogonal projection onto the velocities that satisfy the
     // active contacts and walls (with friction, its sliding variant), so
@@ -418,9 +403,11 @@ namespace grainmpm
     // conserves energy through persistent contact, which R_raw with P V only in
     // the stress does not.
     work_forces = residual;
-    apply_projection(work_forces,
-                     simplified ? Reference::zero : Reference::from_velocities,
-                     nullptr);
+    if (simplified)
+      status.apply_simplified_linear_part(
+        contact, *layout, *masses, *normals, work_forces);
+    else
+      apply_projection(work_forces, false, nullptr);
     const unsigned int n = residual.locally_owned_size();
     for (unsigned int k = 0; k < n; ++k)
       residual.local_element(k) = work_forces.local_element(k) +

@@ -105,7 +105,9 @@ test()
 
   // No prescribed velocities: rigid fields here are only flags.
 
-  const std::vector<GrainInfo<dim>> grains(rigid.size());
+  const std::vector<GrainInfo<dim>>       grains(rigid.size());
+  const std::vector<GrainParameters<dim>> grain_parameters(rigid.size());
+  const RigidGrainMotion<dim> rigid_motion(grains, grain_parameters, grid);
   for (const auto model :
        {ContactModel::frictionless, ContactModel::coulomb_friction})
     {
@@ -115,7 +117,7 @@ test()
       deallog << (model == ContactModel::frictionless ? "frictionless" :
                                                         "Coulomb friction")
               << std::endl;
-      GrainContact<dim> contact(contact_parameters, grid, grains, rigid);
+      GrainContact<dim> contact(contact_parameters, grid, rigid_motion, rigid);
       VectorType        normals;
       contact.compute_normals(layout, mass_gradients, normals);
 
@@ -168,7 +170,7 @@ test()
 
   // Walls.
   ContactParameters contact_parameters;
-  GrainContact<dim> contact(contact_parameters, grid, grains, rigid);
+  GrainContact<dim> contact(contact_parameters, grid, rigid_motion, rigid);
   VectorType        walled = velocities;
   contact.apply_walls(layout, walled);
   unsigned int n_into_wall = 0, n_no_slip_moving = 0, n_changed_elsewhere = 0,

@@ -72,7 +72,7 @@ press(const unsigned int radius_in_cells,
     {
       const auto result =
         fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
-      AssertThrow(result.converged, ExcMessage("Newton failed"));
+      AssertThrow(result.solver.converged, ExcMessage("Newton failed"));
     }
 
   // The floor's reaction at its nodes in the settled state: the force

@@ -120,8 +120,10 @@ test()
   const ContactParameters contact_parameters;
   const std::vector<bool> rigid = {false, false};
   // No prescribed velocities: rigid fields here are only flags.
-  const std::vector<GrainInfo<dim>> grains(rigid.size());
-  GrainContact<dim> contact(contact_parameters, grid, grains, rigid);
+  const std::vector<GrainInfo<dim>>       grains(rigid.size());
+  const std::vector<GrainParameters<dim>> grain_parameters(rigid.size());
+  const RigidGrainMotion<dim> rigid_motion(grains, grain_parameters, grid);
+  GrainContact<dim> contact(contact_parameters, grid, rigid_motion, rigid);
   VectorType        normals;
   contact.compute_normals(layout, mass_gradients, normals);
 

@@ -8,7 +8,7 @@
 //   - the contact pass on v^n (never a gain),
 //   - the theta step on the grid from v^n to v^{n+1} (the scheme's share),
 //   - the grid-to-particle transfer (never a gain with FLIP: the
-//     lumped-mass loss, StepStatistics::transfer_energy_change).
+//     lumped-mass loss, LedgerIncrements::transfer_energy_change).
 // The kinetic energy of the grid is 1/2 v.M v with the scheme's mass matrix
 // (the blended one by default; case (a) also with the lumped mass, which
 // loses more than twice as much in the transfer). The contact pass is the
@@ -74,9 +74,10 @@ run(const std::string &name,
       const double         elastic_before   = particle_energy(fixture, false);
       const StepStatistics statistics =
         fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
-      AssertThrow(statistics.converged, ExcMessage(statistics.failure));
+      AssertThrow(statistics.solver.converged,
+                  ExcMessage(statistics.solver.failure));
       const double after_particles = particle_energy(fixture);
-      if (statistics.n_contact_nodes > 0)
+      if (statistics.events.n_contact_nodes > 0)
         ++contact_steps;
 
       // Grid energies: from the particle-to-grid velocities, and the
@@ -91,13 +92,14 @@ run(const std::string &name,
       mismatch          = std::max(mismatch,
                           std::abs(after_particles - before_particles -
                                    (after - before) -
-                                   statistics.transfer_energy_change));
+                                   statistics.ledger.transfer_energy_change));
       largest_gain_pass = std::max(largest_gain_pass, pass);
       largest_gain_transfer =
-        std::max(largest_gain_transfer, statistics.transfer_energy_change);
+        std::max(largest_gain_transfer,
+                 statistics.ledger.transfer_energy_change);
       sum_pass += pass;
       sum_scheme += scheme;
-      sum_transfer += statistics.transfer_energy_change;
+      sum_transfer += statistics.ledger.transfer_energy_change;
     }
   const double end_momentum = [&]() {
     double momentum = 0.;

@@ -70,8 +70,9 @@ end
     {
       const StepStatistics statistics =
         fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
-      AssertThrow(statistics.converged, ExcMessage(statistics.failure));
-      newton += statistics.newton_iterations;
+      AssertThrow(statistics.solver.converged,
+                  ExcMessage(statistics.solver.failure));
+      newton += statistics.solver.newton_iterations;
       const auto [before, after] = fixture.stepper->get_grid_energies();
       if (step == 0)
         initial = before;

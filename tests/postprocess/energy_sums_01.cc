@@ -93,8 +93,8 @@ end
     {
       const StepStatistics statistics =
         stepper.advance(*fixture.particle_handler, step * dt, dt);
-      n_removed += statistics.n_removed;
-      if (!statistics.has_particle_sums)
+      n_removed += statistics.events.n_removed;
+      if (!statistics.sums.has_particle_sums)
         continue;
       ++n_with_sums;
       const EnergySummary<2> gathered = history.summarize(statistics);

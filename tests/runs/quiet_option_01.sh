@@ -8,7 +8,9 @@
 # prints no header and no progress line, but the final summary. The summary
 # is the same with and without --quiet, with six significant digits (the
 # progress line's one-digit wall time used to stay set on the output, so
-# that the summary said "E_total(end) / E_total(0) = 0.9").
+# that the summary said "E_total(end) / E_total(0) = 0.9"). --quiet also
+# silences the Newton lines of Nonlinear solver/Verbose (the implicit
+# two-disk case, two steps).
 # Usage: quiet_option_01.sh GRAINMPM SOURCE_DIR WORK_DIR
 set -uo pipefail
 grainmpm=$1
@@ -59,5 +61,32 @@ if ! grep -q '^finished: 3500 steps to t = 3.5$' loud.log ||
   summary loud.log
   failed=1
 fi
-[ $failed -eq 0 ] && echo "PASS: 35 progress lines; --quiet prints the summary only; the summary has six digits either way"
+cat > implicit.prm <<PRM
+include $source_dir/prm/two_disks_implicit.prm
+subsection Time stepping
+  set End time = 0.2
+end
+subsection Nonlinear solver
+  set Verbose = true
+end
+subsection Output
+  set Output directory = results-implicit
+  set Write particles  = false
+  set Write grid       = false
+end
+PRM
+"$grainmpm" implicit.prm > verbose.log 2>&1 || failed=1
+"$grainmpm" --quiet implicit.prm > verbose-quiet.log 2>&1 || failed=1
+# The Verbose lines: "  Newton   1: |R|/F = ..." and "  Newton converged
+# in ..." (not the summary's "  Newton iterations per step").
+newton_lines='^  Newton +([0-9]+:|converged|failed|did not)'
+if ! grep -Eq "$newton_lines" verbose.log; then
+  echo "FAIL: Verbose printed no Newton line without --quiet"
+  failed=1
+fi
+if grep -Eq "$newton_lines" verbose-quiet.log; then
+  echo "FAIL: --quiet printed the Newton lines of Verbose"
+  failed=1
+fi
+[ $failed -eq 0 ] && echo "PASS: 35 progress lines; --quiet prints the summary only (no Verbose lines either); the summary has six digits either way"
 exit $failed

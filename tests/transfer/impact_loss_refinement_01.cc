@@ -72,7 +72,7 @@ impact_loss(const std::string &kernel, const unsigned int n_cells)
     {
       const StepStatistics statistics =
         fixture.stepper->advance(*fixture.particle_handler, step * dt, dt);
-      AssertThrow(statistics.converged, ExcMessage("Newton failed"));
+      AssertThrow(statistics.solver.converged, ExcMessage("Newton failed"));
     }
   return 1. - energy(fixture) / E0;
 }

@@ -15,9 +15,10 @@
 namespace grainmpm
 {
   /**
-   * What one step did.
+   * What happened to the material points and the contact nodes in one
+   * step (counted on each rank, reduced by StepStatistics::reduce()).
    */
-  struct StepStatistics
+  struct ParticleEvents
   {
     /** Contact nodes where the projection corrected a field. */
     unsigned int n_contact_nodes = 0;
@@ -32,7 +33,13 @@ namespace grainmpm
     double max_speed = 0.;
     /** True if some particle changed cells and the handler was sorted. */
     bool sorted = false;
+  };
 
+
+
+  /** How the nonlinear solve of one implicit step went. */
+  struct SolverCounts
+  {
     /** False if an implicit step failed; the particles are then untouched. */
     bool converged = true;
     /** Why an implicit step failed. */
@@ -47,6 +54,18 @@ namespace grainmpm
     double residual_norm = 0.;
     /** Changes of the contact status during the accepted solve. */
     unsigned int status_changes = 0;
+    /** Attempts rejected before this step was accepted. */
+    unsigned int rejected = 0;
+  };
+
+
+
+  /**
+   * The step's increments of the energy ledger (EnergyHistory): the terms
+   * that the energies of the particles alone do not show.
+   */
+  struct LedgerIncrements
+  {
     /**
      * Implicit scheme: change of the grid energy 1/2 sum m v^2 + sum V W
      * of the deformable grains over the step, from the particle-to-grid
@@ -97,9 +116,16 @@ namespace grainmpm
      * grid energy change instead.
      */
     double leapfrog_energy_change = 0.;
-    /** Attempts rejected before this step was accepted. */
-    unsigned int rejected = 0;
+  };
 
+
+
+  /**
+   * The sums over the particles that the energy history needs, when a
+   * pass of the step over the particles could gather them.
+   */
+  struct ParticleSums
+  {
     /**
      * Whether the step gathered the particle sums below in its last pass
      * over the particles (the explicit scheme with the update-stress-first
@@ -118,6 +144,21 @@ namespace grainmpm
     double elastic_energy  = 0.;
     double momentum[3]     = {0., 0., 0.};
     double first_moment[3] = {0., 0., 0.};
+  };
+
+
+
+  /**
+   * What one step did, by meaning: what happened to the points and nodes
+   * (events), how the solve went (solver), the ledger increments (ledger)
+   * and the particle sums (sums).
+   */
+  struct StepStatistics
+  {
+    ParticleEvents   events;
+    SolverCounts     solver;
+    LedgerIncrements ledger;
+    ParticleSums     sums;
 
     /**
      * Add up (largest speed: maximum; sorted: or) what each rank counted

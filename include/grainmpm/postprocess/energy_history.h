@@ -74,7 +74,7 @@ namespace grainmpm
     double boundary_work = 0.;
     /**
      * Energy the explicit leapfrog's exchange between kinetic and strain
-     * energy added (<= 0, StepStatistics::leapfrog_energy_change); 0
+     * energy added (<= 0, LedgerIncrements::leapfrog_energy_change); 0
      * implicit.
      */
     double leapfrog = 0.;
@@ -95,11 +95,11 @@ namespace grainmpm
     void
     add(const StepStatistics &statistics)
     {
-      plastic_work += statistics.plastic_work;
-      friction_work += statistics.friction_work;
-      boundary_work += statistics.boundary_work;
-      leapfrog += statistics.leapfrog_energy_change;
-      transfer += statistics.transfer_energy_change;
+      plastic_work += statistics.ledger.plastic_work;
+      friction_work += statistics.ledger.friction_work;
+      boundary_work += statistics.ledger.boundary_work;
+      leapfrog += statistics.ledger.leapfrog_energy_change;
+      transfer += statistics.ledger.transfer_energy_change;
     }
 
     /**
@@ -154,7 +154,7 @@ namespace grainmpm
 
     /**
      * The same from the particle sums a step gathered and reduced
-     * (StepStatistics::has_particle_sums); not collective.
+     * (ParticleSums::has_particle_sums); not collective.
      */
     EnergySummary<dim>
     summarize(const StepStatistics &statistics);

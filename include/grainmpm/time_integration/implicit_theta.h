@@ -32,7 +32,7 @@ namespace grainmpm
    *    particle velocities from v^{n+1} - v^n_P2G; positions moved with
    *    v^theta (second order at theta = 1/2).
    *
-   * If the solve fails, advance() returns `converged == false` with the
+   * If the solve fails, advance() returns `solver.converged == false` with the
    * reason and leaves the particles untouched, so that the caller can
    * retry with a smaller step.
    */
@@ -42,11 +42,16 @@ namespace grainmpm
   public:
     using VectorType = typename TimeIntegrator<dim>::VectorType;
 
+    /**
+     * The lines of `Nonlinear solver/Verbose` go to the screen of the
+     * first rank unless @p quiet (`grainmpm --quiet`).
+     */
     ImplicitTheta(
       const Parameters<dim>                                      &parameters,
       const BackgroundGrid<dim>                                  &grid,
       const std::vector<GrainInfo<dim>>                          &grains,
-      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
+      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+      const bool quiet = false);
 
     StepStatistics
     advance(Particles::ParticleHandler<dim> &particle_handler,

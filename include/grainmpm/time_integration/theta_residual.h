@@ -66,7 +66,7 @@ namespace grainmpm
    * bit-identical results (the loops are serial and in a fixed order).
    *
    * Pi is the contact law of GrainContact with its status frozen
-   * (GrainContact::freeze, GrainContact::apply_frozen): per slot at a
+   * (ContactStatus::freeze, ContactStatus::apply): per slot at a
    * contact node free, sliding or sticking, with v_ref the velocity of a
    * rigid partner or the centre-of-mass velocity of the node computed from
    * V, and at nodes of three or more deformable fields the projection
@@ -154,8 +154,8 @@ namespace grainmpm
     /**
      * Set up the elastic preconditioner (ElasticPreconditioner::setup())
      * for the status frozen at present: it probes the linear part of the
-     * projection (apply_projection() with GrainContact::Reference::linear)
-     * slot by slot. @p x is not used: the elastic stiffness is that of
+     * projection (ContactStatus::apply_symmetric_linear_part()) slot by
+     * slot. @p x is not used: the elastic stiffness is that of
      * the particles at t^n.
      */
     void
@@ -251,14 +251,14 @@ namespace grainmpm
   private:
     /**
      * Frozen contact, then frozen walls, on the end velocities @p v in
-     * place, acting on the theta velocity (1 - theta) v^n + theta v; with
-     * GrainContact::Reference::zero the linear part of that map, which
-     * acts on differences of velocities directly. Records @p impulses
-     * if given.
+     * place, acting on the theta velocity (1 - theta) v^n + theta v: with
+     * v_ref from the velocities (ContactStatus::apply()) or, if
+     * @p simplified, frozen (ContactStatus::apply_simplified()). Records
+     * @p impulses if given.
      */
     unsigned int
-    apply_projection(VectorType                                 &v,
-                     const typename GrainContact<dim>::Reference reference,
+    apply_projection(VectorType                 &v,
+                     const bool                  simplified,
                      std::vector<unsigned char> *node_in_contact,
                      ConstraintImpulses<dim>    *impulses = nullptr) const;
 

@@ -11,7 +11,10 @@
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/particles/grain_generator.h>
 #include <grainmpm/transfer/grain_field_layout.h>
+#include <grainmpm/transfer/particle_update_check.h>
+#include <grainmpm/transfer/rigid_grain_motion.h>
 #include <grainmpm/transfer/transfer_cache.h>
+#include <grainmpm/transfer/transfer_options.h>
 
 #include <deal.II/base/tensor.h>
 
@@ -63,7 +66,8 @@ namespace grainmpm
       const Parameters<dim>                                      &parameters,
       const BackgroundGrid<dim>                                  &grid,
       const std::vector<GrainInfo<dim>>                          &grains,
-      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials);
+      const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials,
+      const TransferOptions &options = TransferOptions());
 
     /**
      * Evaluate the shape functions at the positions of the particles of
@@ -91,6 +95,13 @@ namespace grainmpm
     get_grains() const
     {
       return grains;
+    }
+
+    /** The motion of the rigid grains. */
+    const RigidGrainMotion<dim> &
+    get_rigid_motion() const
+    {
+      return rigid_motion;
     }
 
     /** For each field: whether it belongs to a rigid grain. */
@@ -233,10 +244,11 @@ namespace grainmpm
      * (the increment measured from @p reference_velocities; `Particle
      * velocity update`) and position update x += dt sum_i S_ip v_i with
      * v = @p position_velocities. Rigid grains follow their prescribed
-     * velocity. Records particles that left through open faces (removed by
-     * finish_step()) and whether the handler needs sorting, and the energy
+     * velocity. Each point is checked (ParticleUpdateCheck). Records
+     * particles that left through open faces (removed by finish_step()) and
+     * whether the handler needs sorting, and the energy
      * the velocity update adds beyond the change of the grid kinetic
-     * energy (StepStatistics::transfer_energy_change), the grid kinetic
+     * energy (LedgerIncrements::transfer_energy_change), the grid kinetic
      * energy being 1/2 v.M v with the mass matrix @p mass_matrix if given,
      * with the lumped @p masses otherwise. Throws InputError on all ranks
      * if a particle leaves through a closed face.
@@ -303,26 +315,76 @@ namespace grainmpm
                   VectorType                      *forces) const;
 
     /**
-     * What is wrong with the update of the material point @p id of grain
-     * @p grain from @p old_position to @p new_position and @p new_velocity
-     * in the step from @p time by @p dt: a non-finite value (a prescribed
-     * velocity that is not finite, or a diverged solution), or in the
-     * explicit scheme a move of more than one cell (a blow-up). Empty if
-     * nothing.
+     * The FLIP/PIC update of the deformable particle @p p (cache order)
+     * with @p properties at @p old_position: v_p = flip (v_p + sum_i S_ip
+     * (v_i^new - v_i^ref)) + (1 - flip) sum_i S_ip v_i^new and
+     * x_p += dt sum_i S_ip v_i^x, from the grid values @p new_values,
+     * @p reference_values and @p position_values (dim per local slot).
+     * Adds to @p kinetic_change the change of 1/2 m_p |v_p|^2 and to
+     * @p increment_energy 1/2 m_p |sum_i S_ip (v_i^new - v_i^ref)|^2.
      */
-    std::string
-    check_update(const types::particle_index id,
-                 const unsigned int          grain,
-                 const Point<dim>           &old_position,
-                 const Point<dim>           &new_position,
-                 const Tensor<1, dim>       &new_velocity,
-                 const double                time,
-                 const double                dt) const;
+    void
+    update_deformable(const std::size_t        p,
+                      const ArrayView<double> &properties,
+                      const Point<dim>        &old_position,
+                      const double            *new_values,
+                      const double            *reference_values,
+                      const double            *position_values,
+                      const double             dt,
+                      Point<dim>              &new_position,
+                      Tensor<1, dim>          &new_velocity,
+                      double                  &kinetic_change,
+                      double                  &increment_energy) const;
+
+    /**
+     * Add the kinetic and elastic energy, the momentum and the first moment
+     * of the deformable particle with @p properties of grain @p grain at
+     * @p position with @p velocity to @p sums.
+     */
+    void
+    add_particle_sums(const ArrayView<const double> &properties,
+                      const unsigned int             grain,
+                      const Tensor<1, dim>          &velocity,
+                      const Point<dim>              &position,
+                      ParticleSums                  &sums) const;
+
+    /**
+     * Move @p particle from @p old_position to @p new_position, keeping its
+     * cell if it is still inside; otherwise mark the handler for sorting in
+     * @p statistics.
+     */
+    void
+    move_particle(
+      typename Particles::ParticleHandler<dim>::particle_iterator &particle,
+      const Point<dim>                                            &old_position,
+      const Point<dim>                                            &new_position,
+      StepStatistics &statistics) const;
+
+    /**
+     * Book in @p ledger the energy the velocity update adds beyond the
+     * change of the grid kinetic energy of the deformable fields,
+     * @p kinetic_change - 1/2 sum_s m_s (|v_s^new|^2 - |v_s^ref|^2) (with
+     * @p mass_matrix if given and not lumped: 1/2 v.M v), and with
+     * TransferOptions::book_leapfrog_energy_change the leapfrog's
+     * @p increment_energy - 1/2 sum_s m_s |v_s^new - v_s^ref|^2; this
+     * rank's slots.
+     */
+    void
+    book_energy_changes(const VectorType      &masses,
+                        const VectorType      &new_velocities,
+                        const VectorType      &reference_velocities,
+                        const MassMatrix<dim> *mass_matrix,
+                        const double           kinetic_change,
+                        const double           increment_energy,
+                        LedgerIncrements      &ledger) const;
 
     const Parameters<dim>                                      &parameters;
     const BackgroundGrid<dim>                                  &grid;
     const std::vector<GrainInfo<dim>>                          &grains;
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
+    const TransferOptions                                       options;
+    const RigidGrainMotion<dim>                                 rigid_motion;
+    const ParticleUpdateCheck<dim>                              update_check;
 
     std::vector<unsigned int> field_of_grain;
     std::vector<bool>         field_is_rigid;

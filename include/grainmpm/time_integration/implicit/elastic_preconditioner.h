@@ -45,10 +45,10 @@ namespace grainmpm
    * contact, sticking and walls P is M_L-orthogonal, Q = P^T and A is
    * symmetric. With Coulomb sliding the tangential correction follows the
    * normal one and P is not; that friction term is left out of P here
-   * (GrainContact::Reference::linear), which keeps A symmetric for the
-   * smoothed aggregation. K is block diagonal by grain. Slots that are
-   * not unknowns (rigid, too light) have R = V - something, J = I: their
-   * rows are m_s delta.
+   * (ContactStatus::apply_symmetric_linear_part), which keeps A symmetric for
+   * the smoothed aggregation. K is block diagonal by grain. Slots that are not
+   * unknowns (rigid, too light) have R = V - something, J = I: their rows are
+   * m_s delta.
    *
    * What A leaves out: the friction of sliding slots, the geometric
    * stiffness (sigma^n, the volume change and the stress rotation),

@@ -1,12 +1,9 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-// The subsections of the time integration: Time stepping, and Nonlinear
-// solver and Linear solver of the implicit scheme.
-
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/parameter_parsing.h>
-#include <grainmpm/base/parameters.h>
+#include <grainmpm/solvers/solver_parameters.h>
 
 #include <deal.II/base/patterns.h>
 
@@ -15,190 +12,6 @@
 
 namespace grainmpm
 {
-  // ------------------------------------------------------- time stepping
-
-  void
-  TimeSteppingParameters::declare(ParameterHandler &prm)
-  {
-    prm.enter_subsection("Time stepping");
-    prm.add_parameter(
-      "Scheme",
-      scheme_text,
-      "The time integration scheme: 'explicit leapfrog' (eqs. 7-10 of "
-      "Cummins & Brackbill) or 'implicit theta' (eqs. 11-20: theta-centred "
-      "stress and volume, solved by Jacobian-free Newton-Krylov; see the "
-      "subsections Nonlinear solver and Linear solver). Dimensionless.",
-      Patterns::Selection("explicit leapfrog|implicit theta"));
-    prm.add_parameter(
-      "Theta",
-      theta,
-      "Centring of the implicit scheme: stress and volume at t + theta dt. "
-      "1/2 conserves the energy of linear elastic motion, larger values "
-      "damp the highest frequencies, 1 is backward Euler. Dimensionless.",
-      Patterns::Double(0.5, 1.));
-    prm.add_parameter(
-      "Minimum time step",
-      minimum_time_step,
-      "Implicit scheme: a step whose Newton solve fails is retried with "
-      "half the time step, down to this value; below it the run stops. "
-      "Zero means 1/1024 of the first time step. Units: time.",
-      Patterns::Double(0.));
-    prm.add_parameter(
-      "Adaptive time stepping",
-      adaptive_time_stepping,
-      "Implicit scheme: halve the time step when a Newton solve fails, "
-      "and grow a cut step back by min(2, N_t / N) (up to the step given "
-      "by Time step or CFL number) after Steps before growth consecutive "
-      "steps that needed N <= N_t Newton iterations, N_t half of Maximum "
-      "Newton iterations. If false, a failed solve stops the run.");
-    prm.add_parameter(
-      "Steps before growth",
-      steps_before_growth,
-      "Implicit scheme: consecutive steps that converge in at most half of "
-      "Maximum Newton iterations before a cut time step grows. "
-      "Dimensionless.",
-      Patterns::Integer(1));
-    prm.add_parameter(
-      "Stress update",
-      stress_update_text,
-      "Where in the explicit step the stress is updated: 'USF' (update "
-      "stress first, from the grid velocity of the particle-to-grid "
-      "transfer, as in eqs. 8-9 of Cummins & Brackbill), 'MUSL' (after "
-      "the particle update, from the grid velocity remapped from the new "
-      "particle momenta) or 'USL' (after the grid update, from the "
-      "contact- and wall-constrained new grid velocity, the one that also "
-      "moves the particles: a contact or wall reaction then does no work "
-      "on the strain, and grains in sustained contact do not gain energy, "
-      "which they do with USF and MUSL; doc/validation.md). Dimensionless.",
-      Patterns::Selection("USF|MUSL|USL"));
-    prm.add_parameter("End time",
-                      end_time,
-                      "The time at which the run stops. Units: time.",
-                      Patterns::Double(0.));
-    prm.add_parameter("Time step",
-                      time_step,
-                      "A fixed time step. If zero, the step is chosen every "
-                      "step from the CFL number. For the explicit leapfrog "
-                      "at most h / c (see CFL number). Units: time.",
-                      Patterns::Double(0.));
-    prm.add_parameter(
-      "CFL number",
-      cfl_number,
-      "Used when Time step is zero: dt = CFL h / (c + max |v_p|) with h the "
-      "smallest cell size, c the largest dilatational wave speed of the "
-      "materials in use and v_p the particle velocities. At most 1 for the "
-      "explicit leapfrog (its stability limit; 0.25 is typical). "
-      "Dimensionless.",
-      Patterns::Double(0., 10.));
-    prm.add_parameter(
-      "Particle velocity update",
-      velocity_update_text,
-      "How particles get their new velocity from the grid: 'FLIP' (add the "
-      "grid velocity change), 'PIC' (take the grid velocity) or 'blend' "
-      "(FLIP fraction alpha of FLIP, 1 - alpha of PIC). Dimensionless.",
-      Patterns::Selection("FLIP|PIC|blend"));
-    prm.add_parameter("FLIP fraction",
-                      flip_fraction,
-                      "The FLIP weight alpha of the 'blend' update. "
-                      "Dimensionless.",
-                      Patterns::Double(0., 1.));
-    prm.add_parameter(
-      "Mass matrix",
-      mass_matrix_text,
-      "The grid mass matrix M of the momentum balance, of the "
-      "particle-to-grid velocity (M v = p) and of the kinetic energy "
-      "1/2 v.M v. 'lumped': the diagonal m_i = sum_p m_p S_ip; 'blended' "
-      "(implicit scheme only): (1 - alpha) lumped + alpha consistent, the "
-      "consistent mass being sum_p m_p S_ip S_jp (applied matrix-free), "
-      "alpha = Consistent mass fraction; it keeps most of the energy that "
-      "the lumped mass loses between particles and grid at every step "
-      "(doc/theory.md). 'automatic': blended for the implicit scheme, "
-      "lumped for the explicit one. Dimensionless.",
-      Patterns::Selection("automatic|lumped|blended"));
-    prm.add_parameter(
-      "Consistent mass fraction",
-      consistent_mass_fraction,
-      "alpha of the blended mass matrix. The grid-scale modes keep the mass "
-      "1 - alpha, and the GMRES iterations per Newton step grow as alpha "
-      "approaches 1 (doc/validation.md), so at most 0.95 is offered. "
-      "Dimensionless.",
-      Patterns::Double(0., 0.95));
-    prm.add_parameter("Maximum number of steps",
-                      maximum_number_of_steps,
-                      "The run stops after this many steps even if End time "
-                      "is not reached. Dimensionless.",
-                      Patterns::Integer(1));
-    prm.leave_subsection();
-  }
-
-
-
-  void
-  TimeSteppingParameters::check()
-  {
-    scheme = parse_choice<TimeSteppingScheme>(
-      "Time stepping/Scheme = " + scheme_text,
-      scheme_text,
-      {{"explicit leapfrog", TimeSteppingScheme::explicit_leapfrog},
-       {"implicit theta", TimeSteppingScheme::implicit_theta}});
-    stress_update =
-      parse_choice<StressUpdate>("Time stepping/Stress update = " +
-                                   stress_update_text,
-                                 stress_update_text,
-                                 {{"USF", StressUpdate::usf},
-                                  {"MUSL", StressUpdate::musl},
-                                  {"USL", StressUpdate::usl}});
-    if (scheme == TimeSteppingScheme::implicit_theta &&
-        stress_update != StressUpdate::usf)
-      throw InputError("Time stepping/Stress update = " + stress_update_text,
-                       "applies to the explicit scheme only; the implicit "
-                       "scheme uses the theta-centred stress of eqs. 12-13. "
-                       "Remove the entry or set it to USF.");
-    velocity_update =
-      parse_choice<VelocityUpdate>("Time stepping/Particle velocity update = " +
-                                     velocity_update_text,
-                                   velocity_update_text,
-                                   {{"FLIP", VelocityUpdate::flip},
-                                    {"PIC", VelocityUpdate::pic},
-                                    {"blend", VelocityUpdate::blend}});
-    if (velocity_update == VelocityUpdate::flip)
-      flip_fraction = 1.;
-    else if (velocity_update == VelocityUpdate::pic)
-      flip_fraction = 0.;
-    mass_matrix = parse_choice<MassMatrixType>(
-      "Time stepping/Mass matrix = " + mass_matrix_text,
-      mass_matrix_text,
-      {{"automatic",
-        scheme == TimeSteppingScheme::implicit_theta ? MassMatrixType::blended :
-                                                       MassMatrixType::lumped},
-       {"lumped", MassMatrixType::lumped},
-       {"blended", MassMatrixType::blended}});
-    if (scheme == TimeSteppingScheme::explicit_leapfrog &&
-        mass_matrix == MassMatrixType::blended)
-      throw InputError("Time stepping/Mass matrix = blended",
-                       "applies to the implicit scheme only; the explicit "
-                       "leapfrog uses the lumped mass. Remove the entry or "
-                       "set Scheme = implicit theta.");
-    if (mass_matrix == MassMatrixType::lumped)
-      consistent_mass_fraction = 0.;
-    if (time_step == 0. && cfl_number == 0.)
-      throw InputError("Time stepping/CFL number",
-                       "must be positive when Time step is zero.");
-    if (scheme == TimeSteppingScheme::explicit_leapfrog && time_step == 0. &&
-        cfl_number > 1.)
-      {
-        std::ostringstream entry;
-        entry << "Time stepping/CFL number = " << cfl_number;
-        throw InputError(entry.str(),
-                         "is above 1, the stability limit of the explicit "
-                         "leapfrog: its energy grows without bound. Use at "
-                         "most 1 (0.25 is typical), or Scheme = implicit "
-                         "theta for larger steps.");
-      }
-  }
-
-
-
   // ----------------------------------------------------- nonlinear solver
 
   void
@@ -319,7 +132,8 @@ namespace grainmpm
     prm.add_parameter(
       "Verbose",
       verbose,
-      "Print one line per Newton iteration on the screen (first MPI rank): "
+      "Print one line per Newton iteration on the screen (first MPI rank; "
+      "not with grainmpm --quiet): "
       "the iteration, ||R|| / F_scale after it (iteration 0: at the initial "
       "guess), the forcing term eta, the Krylov iterations, the line "
       "search halvings and the contact status changes so far in the step; "

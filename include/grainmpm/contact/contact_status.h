@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_contact_contact_status_h
+#define grainmpm_contact_contact_status_h
+
+#include <grainmpm/base/config.h>
+#include <grainmpm/contact/constraint_impulses.h>
+#include <grainmpm/contact/contact_law.h>
+#include <grainmpm/transfer/grain_field_layout.h>
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <vector>
+
+namespace grainmpm
+{
+  template <int dim>
+  class GrainContact;
+
+
+
+  /**
+   * The contact and wall status of one step (the active set of the
+   * implicit scheme): per slot at a contact node and per (slot, closed
+   * face) at the boundary, the state of the constraint, its slip direction
+   * and, at contact nodes, the partner velocity v_ref and the approach the
+   * gap allows. freeze() decides it with the contact law of GrainContact
+   * (ContactLaw::project_node(), then the walls); apply() applies it with
+   * the states frozen (ContactLaw::project_node_frozen(), then the walls).
+   * Given the status, the constraints are an affine map of the velocities
+   * they act on; the variants of apply() give the simplified map of the
+   * preconditioners and the linear parts of both maps.
+   */
+  template <int dim>
+  class ContactStatus
+  {
+  public:
+    using VectorType = LinearAlgebra::distributed::Vector<double>;
+
+    /**
+     * Size the status for @p layout: every slot free, one wall entry per
+     * (deformable slot, closed face of @p contact's grid) at boundary
+     * nodes.
+     */
+    void
+    reinit(const GrainContact<dim>     &contact,
+           const GrainFieldLayout<dim> &layout);
+
+    /**
+     * Decide and freeze the contact and wall states for the velocities
+     * @p velocities: the contact law as GrainContact::apply_contact()
+     * applies it (slots with a mass not above @p mass_threshold free), then
+     * the walls on the velocities after contact. With @p band > 0 and a
+     * status frozen before in this step, the decisions have the
+     * hysteresis of ContactLaw::classify() against the states frozen
+     * before: a state changes only when the velocities cross its threshold
+     * by more than @p band.
+     */
+    void
+    freeze(const GrainContact<dim>     &contact,
+           const GrainFieldLayout<dim> &layout,
+           const VectorType            &masses,
+           const VectorType            &normals,
+           const VectorType            &velocities,
+           const double                 mass_threshold,
+           const double                 band = 0.);
+
+    /**
+     * Apply the frozen status to @p velocities in place: contact at the
+     * nodes with a constrained slot, v_ref from the velocities (with the
+     * momentum-restoring shift at nodes of three or more deformable
+     * fields), then the walls. Flags the nodes where contact is active in
+     * @p node_in_contact (if given) and returns their number. With
+     * @p impulses, records the impulses of contact and walls.
+     */
+    unsigned int
+    apply(const GrainContact<dim>     &contact,
+          const GrainFieldLayout<dim> &layout,
+          const VectorType            &masses,
+          const VectorType            &normals,
+          VectorType                  &velocities,
+          std::vector<unsigned char>  *node_in_contact = nullptr,
+          ConstraintImpulses<dim>     *impulses        = nullptr) const;
+
+    /**
+     * apply() with v_ref the value frozen with the status (no shift): the
+     * map of the simplified Jacobian. Returns the number of nodes where
+     * contact is active.
+     */
+    unsigned int
+    apply_simplified(const GrainContact<dim>     &contact,
+                     const GrainFieldLayout<dim> &layout,
+                     const VectorType            &masses,
+                     const VectorType            &normals,
+                     VectorType                  &velocities) const;
+
+    /**
+     * The linear part of apply_simplified(), which acts on differences of
+     * velocities: v_ref zero, and no approach allowed by the gaps.
+     */
+    void
+    apply_simplified_linear_part(const GrainContact<dim>     &contact,
+                                 const GrainFieldLayout<dim> &layout,
+                                 const VectorType            &masses,
+                                 const VectorType            &normals,
+                                 VectorType &differences) const;
+
+    /**
+     * The linear part of apply() that the assembled preconditioner needs:
+     * v_ref from the velocities with the shift, as apply() takes it, but
+     * without the approach the gaps allow and without the friction of
+     * sliding slots and walls (the tangential correction that follows the
+     * normal one). This is the symmetric part of the linearised frozen
+     * projection, which couples the fields of a node.
+     */
+    void
+    apply_symmetric_linear_part(const GrainContact<dim>     &contact,
+                                const GrainFieldLayout<dim> &layout,
+                                const VectorType            &masses,
+                                const VectorType            &normals,
+                                VectorType                  &velocities) const;
+
+    /** State, slip direction and partner velocity v_ref per owned slot. */
+    std::vector<ContactState>   slot_state;
+    std::vector<Tensor<1, dim>> slip_directions;
+    std::vector<Tensor<1, dim>> references;
+    /** The approach speed the gap allows per owned slot (gap check). */
+    std::vector<double> allowed;
+
+    /** Wall entries: (slot, face) of deformable slots at closed faces. */
+    std::vector<unsigned int>   wall_slots;
+    std::vector<unsigned char>  wall_faces;
+    std::vector<ContactState>   wall_state;
+    std::vector<Tensor<1, dim>> wall_slip_directions;
+    std::vector<double>         wall_allowed;
+
+    /** Whether any slot or wall entry is not free. */
+    bool any_active = false;
+    /** Whether the states were decided (by freeze()) since reinit(). */
+    bool decided = false;
+
+  private:
+    /**
+     * Which map apply_map() applies: the affine one or its linear part
+     * (without the approach the gaps allow, and v_ref zero where it is
+     * frozen), v_ref frozen or from the velocities, with or without
+     * friction.
+     */
+    struct Map
+    {
+      bool affine;
+      bool frozen_reference;
+      bool friction;
+    };
+
+    /** The frozen status applied as @p map says (see apply()). */
+    unsigned int
+    apply_map(const Map                   &map,
+              const GrainContact<dim>     &contact,
+              const GrainFieldLayout<dim> &layout,
+              const VectorType            &masses,
+              const VectorType            &normals,
+              VectorType                  &velocities,
+              std::vector<unsigned char>  *node_in_contact,
+              ConstraintImpulses<dim>     *impulses) const;
+  };
+} // namespace grainmpm
+
+#endif

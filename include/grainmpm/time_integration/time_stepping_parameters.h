@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#ifndef grainmpm_time_integration_time_stepping_parameters_h
+#define grainmpm_time_integration_time_stepping_parameters_h
+
+#include <grainmpm/base/config.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace grainmpm
+{
+  /**
+   * Order of the explicit stress update.
+   */
+  enum class StressUpdate
+  {
+    usf,
+    musl,
+    usl
+  };
+
+  /**
+   * The time integration schemes (subsection "Time stepping").
+   */
+  enum class TimeSteppingScheme
+  {
+    explicit_leapfrog,
+    implicit_theta
+  };
+
+  /**
+   * How the particles get their new velocity from the grid.
+   */
+  enum class VelocityUpdate
+  {
+    flip,
+    pic,
+    blend
+  };
+
+  /**
+   * The grid mass matrix of the implicit scheme (see MassMatrix).
+   */
+  enum class MassMatrixType
+  {
+    lumped,
+    blended
+  };
+
+  /**
+   * Subsection "Time stepping".
+   */
+  struct TimeSteppingParameters
+  {
+    std::string        scheme_text = "explicit leapfrog";
+    TimeSteppingScheme scheme      = TimeSteppingScheme::explicit_leapfrog;
+    /** Centring parameter of the implicit scheme, in [1/2, 1]. */
+    double theta = 0.5;
+    /** Smallest step the implicit failure policy may cut to (0: auto). */
+    double minimum_time_step = 0.;
+    /** Cut dt on a failed implicit step and grow it back afterwards. */
+    bool adaptive_time_stepping = true;
+    /** Consecutive easy steps before dt is doubled back. */
+    unsigned int   steps_before_growth  = 2;
+    std::string    stress_update_text   = "USF";
+    StressUpdate   stress_update        = StressUpdate::usf;
+    double         end_time             = 1.;
+    double         time_step            = 0.;
+    double         cfl_number           = 0.25;
+    std::string    velocity_update_text = "FLIP";
+    VelocityUpdate velocity_update      = VelocityUpdate::flip;
+    /** The FLIP weight: set by check() to 1 (FLIP) or 0 (PIC). */
+    double         flip_fraction           = 1.;
+    unsigned int   maximum_number_of_steps = 100000000;
+    std::string    mass_matrix_text        = "automatic";
+    MassMatrixType mass_matrix             = MassMatrixType::lumped;
+    /**
+     * The consistent fraction alpha of the blended mass matrix: set by
+     * check() to 0 with the lumped mass.
+     */
+    double consistent_mass_fraction = 0.95;
+
+    void
+    declare(ParameterHandler &prm);
+    void
+    check();
+  };
+} // namespace grainmpm
+
+#endif

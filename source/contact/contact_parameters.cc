@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+#include <grainmpm/base/input_error.h>
+#include <grainmpm/base/parameter_parsing.h>
+#include <grainmpm/contact/contact_parameters.h>
+
+#include <deal.II/base/patterns.h>
+
+namespace grainmpm
+{
+  // ------------------------------------------------------------- contact
+
+  void
+  ContactParameters::declare(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    prm.add_parameter(
+      "Contact model",
+      model_text,
+      "How grains interact where they meet. 'none': all deformable grains "
+      "share one grid velocity field, so touching grains stick (classic "
+      "single-field MPM). 'frictionless': Bardenhagen-Brackbill-Sulsky "
+      "contact, every grain has its own field; no interpenetration, free "
+      "separation, no tangential force. 'Coulomb friction': the same with "
+      "Coulomb friction (stick/slip) of coefficient 'Friction coefficient'. "
+      "Dimensionless.",
+      Patterns::Selection("none|frictionless|Coulomb friction"));
+    prm.add_parameter("Friction coefficient",
+                      friction_coefficient,
+                      "Coulomb friction coefficient between grains, used by "
+                      "the 'Coulomb friction' model. Dimensionless.",
+                      Patterns::Double(0.));
+    prm.add_parameter(
+      "Gap check",
+      gap_check,
+      "Whether contact (between grains, with rigid grains and with the "
+      "walls) acts only where the surfaces meet within the step. At each "
+      "node the surface of every grain is located along the contact normal "
+      "from the volume its material points give the node (sum_p V_p S_ip) "
+      "against the node's support, as for a flat surface; a grain may then "
+      "approach its partner by the gap between the surfaces in one step, "
+      "and only the faster part of the approach is removed. 'false': every "
+      "approach at a node where two grains have mass is removed (contact "
+      "about one cell early, and grains rotating next to a surface are "
+      "pushed off it).",
+      Patterns::Bool());
+    prm.leave_subsection();
+  }
+
+
+
+  void
+  ContactParameters::check()
+  {
+    model =
+      parse_choice<ContactModel>("Contact/Contact model = " + model_text,
+                                 model_text,
+                                 {{"none", ContactModel::none},
+                                  {"frictionless", ContactModel::frictionless},
+                                  {"Coulomb friction",
+                                   ContactModel::coulomb_friction}});
+  }
+} // namespace grainmpm
