@@ -1,16 +1,12 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
-#include <grainmpm/base/input_error.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/transfer/mass_matrix.h>
 #include <grainmpm/transfer/transfer.h>
 
 #include <deal.II/lac/vector.h>
 
-#include <algorithm>
-#include <limits>
-#include <sstream>
 #include <type_traits>
 
 namespace grainmpm
