@@ -121,7 +121,9 @@ namespace grainmpm
                                           previous == ContactState::sliding ? -band :
                                                                               0.) :
                                          0.;
-    if (mu > 0. && mu * approach + stick_shift >= slip)
+    // A caught field loses its whole approach (below), so the friction
+    // bound is mu times the whole normal speed.
+    if (mu > 0. && mu * normal_speed + stick_shift >= slip)
       return ContactState::sticking;
     if (mu > 0.)
       slip_direction = tangential / slip;
@@ -137,14 +139,13 @@ namespace grainmpm
                                const double          mu,
                                const Tensor<1, dim> &slip_direction,
                                const Tensor<1, dim> &reference,
-                               Tensor<1, dim>       &velocity,
-                               const double          allowed)
+                               Tensor<1, dim>       &velocity)
   {
     if (state == ContactState::sticking)
-      velocity = reference + allowed * normal;
+      velocity = reference;
     else if (state == ContactState::sliding)
       {
-        const double approach = (velocity - reference) * normal - allowed;
+        const double approach = (velocity - reference) * normal;
         velocity -= approach * normal + (mu * approach) * slip_direction;
       }
   }
@@ -190,13 +191,8 @@ namespace grainmpm
             if (state == ContactState::free)
               continue; // separating: free
           }
-        apply_state(state,
-                    normals[k],
-                    mu,
-                    slip_direction,
-                    reference,
-                    velocities[k],
-                    allowed != nullptr ? allowed[k] : 0.);
+        apply_state(
+          state, normals[k], mu, slip_direction, reference, velocities[k]);
         if (states != nullptr)
           {
             states[k]          = state;
@@ -287,8 +283,7 @@ namespace grainmpm
                   mu,
                   slip_directions[k],
                   reference,
-                  node.velocities[k],
-                  node.allowed != nullptr ? node.allowed[k] : 0.);
+                  node.velocities[k]);
     // Three or more deformable fields: one momentum-restoring shift. The
     // map stays linear in the velocities; alternating it with the frozen
     // projection until the shift vanishes converges slowly without
@@ -348,14 +343,12 @@ namespace grainmpm
     Tensor<1, dim>     slip_direction;
     const ContactState state =
       classify_wall(condition, normal, velocity, slip_direction, allowed);
-    // (A no-slip wall sticks whatever the gap.)
     apply_state(state,
                 normal,
                 wall_friction(condition),
                 slip_direction,
                 Tensor<1, dim>(),
-                velocity,
-                condition.type == BoundaryType::no_slip ? 0. : allowed);
+                velocity);
   }
 
 

@@ -38,12 +38,12 @@ namespace grainmpm
       "walls) acts only where the surfaces meet within the step. At each "
       "node the surface of every grain is located along the contact normal "
       "from the volume its material points give the node (sum_p V_p S_ip) "
-      "against the node's support, as for a flat surface; a grain may then "
-      "approach its partner by the gap between the surfaces in one step, "
-      "and only the faster part of the approach is removed. 'false': every "
-      "approach at a node where two grains have mass is removed (contact "
-      "about one cell early, and grains rotating next to a surface are "
-      "pushed off it).",
+      "against the node's support, as for a flat surface; a grain that "
+      "approaches its partner by less than the gap between the surfaces in "
+      "one step is left alone, one that approaches faster loses its whole "
+      "approach. 'false': every approach at a node where two grains have "
+      "mass is removed (contact about one cell early, grains rotating next "
+      "to a surface are pushed off it, and rolling grains slip).",
       Patterns::Bool());
     prm.leave_subsection();
   }

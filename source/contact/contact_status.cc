@@ -20,7 +20,6 @@ namespace grainmpm
     slot_state.assign(n_slots, ContactState::free);
     slip_directions.assign(n_slots, Tensor<1, dim>());
     references.assign(n_slots, Tensor<1, dim>());
-    allowed.assign(n_slots, 0.);
     wall_slots.clear();
     wall_faces.clear();
     for (const unsigned int node : grid.boundary_nodes())
@@ -40,7 +39,6 @@ namespace grainmpm
       }
     wall_state.assign(wall_slots.size(), ContactState::free);
     wall_slip_directions.assign(wall_slots.size(), Tensor<1, dim>());
-    wall_allowed.assign(wall_slots.size(), 0.);
     any_active = false;
     decided    = false;
   }
@@ -87,26 +85,20 @@ namespace grainmpm
         const Tensor<1, dim> normal =
           ContactLaw<dim>::face_normal(wall_faces[w]);
         Tensor<1, dim> velocity = get_slot_vector<dim>(projected, s);
-        wall_allowed[w] =
-          condition.type == BoundaryType::no_slip ?
-            0. :
-            contact.get_gaps().wall_allowed_approach(s, wall_faces[w]);
-        wall_state[w] =
-          ContactLaw<dim>::classify_wall(condition,
-                                         normal,
-                                         velocity,
-                                         wall_slip_directions[w],
-                                         wall_allowed[w],
-                                         hysteresis ? previous_walls[w] :
-                                                      ContactState::free,
-                                         hysteresis ? band : 0.);
+        wall_state[w]           = ContactLaw<dim>::classify_wall(
+          condition,
+          normal,
+          velocity,
+          wall_slip_directions[w],
+          contact.get_gaps().wall_allowed_approach(s, wall_faces[w]),
+          hysteresis ? previous_walls[w] : ContactState::free,
+          hysteresis ? band : 0.);
         ContactLaw<dim>::apply_state(wall_state[w],
                                      normal,
                                      ContactLaw<dim>::wall_friction(condition),
                                      wall_slip_directions[w],
                                      Tensor<1, dim>(),
-                                     velocity,
-                                     wall_allowed[w]);
+                                     velocity);
         set_slot_vector<dim>(velocity, projected, s);
       }
     const auto active = [](const ContactState state) {
@@ -245,8 +237,6 @@ namespace grainmpm
         if (impulses != nullptr)
           before = fields.velocities;
         ContactNode<dim> view = fields.view();
-        if (map.affine)
-          view.allowed = allowed.data() + begin;
         ContactLaw<dim>::project_node_frozen(view,
                                              slot_state.data() + begin,
                                              slip_directions.data() + begin,
@@ -275,8 +265,7 @@ namespace grainmpm
                                          0.,
                                        wall_slip_directions[w],
                                        Tensor<1, dim>(),
-                                       velocity,
-                                       map.affine ? wall_allowed[w] : 0.);
+                                       velocity);
           set_slot_vector<dim>(velocity, velocities, s);
           if (impulses != nullptr)
             impulses->add_wall(face, masses.local_element(s), before, velocity);

@@ -145,7 +145,6 @@ namespace grainmpm
               status->slot_state[fields.begin + k]      = node_states[k];
               status->slip_directions[fields.begin + k] = node_slips[k];
               status->references[fields.begin + k]      = reference;
-              status->allowed[fields.begin + k]         = node_allowed[k];
             }
         if (corrected)
           {

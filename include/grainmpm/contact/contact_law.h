@@ -70,7 +70,10 @@ namespace grainmpm
     /** Their velocities, corrected in place. */
     Tensor<1, dim> *velocities = nullptr;
 
-    /** The approach speed the gap allows each field (none: 0). */
+    /**
+     * The approach speed the gap allows each field (none: 0): a field that
+     * approaches no faster is left alone.
+     */
     const double *allowed = nullptr;
     /** ContactLaw::project_node(): the states decided, with hysteresis. */
     const ContactState *previous_states = nullptr;
@@ -107,7 +110,11 @@ namespace grainmpm
    * pass decides again, so no field is left approaching; with frozen
    * states (implicit), each pass applies the same states, so every
    * constrained field satisfies its constraint. With an allowed approach
-   * a_g (the gap check, GapEstimator), only D - a_g is removed.
+   * a_g (the gap check, GapEstimator) a field is caught only if D > a_g:
+   * it then loses its whole approach, as without the gap check. The gap
+   * decides whether the surfaces meet within the step; the constraint
+   * itself stays the one that does no work (on the theta velocity of the
+   * implicit scheme).
    */
   template <int dim>
   class ContactLaw
@@ -145,8 +152,8 @@ namespace grainmpm
     /**
      * The state of a velocity @p relative to its partner (or wall) with
      * the normal @p normal (pointing into the partner) and friction
-     * coefficient @p mu: with D the approach speed beyond @p allowed,
-     * free if D <= 0, sticking if mu D >= |v_t|, else sliding; sets the
+     * coefficient @p mu: with D the approach speed, free if D <= @p allowed,
+     * sticking if mu D >= |v_t|, else sliding; sets the
      * slip direction of a sliding state with friction, zero otherwise.
      * With a hysteresis band @p band > 0 the tests are shifted against a
      * change of the state @p previous: a constrained slot is released
@@ -164,8 +171,9 @@ namespace grainmpm
              const double          band     = 0.);
 
     /**
-     * Apply @p state to @p velocity with partner velocity @p reference,
-     * leaving the approach speed @p allowed.
+     * Apply @p state to @p velocity with partner velocity @p reference:
+     * sticking takes v_ref, sliding removes the whole approach D and mu D
+     * of the slip along the slip direction.
      */
     static void
     apply_state(const ContactState    state,
@@ -173,8 +181,7 @@ namespace grainmpm
                 const double          mu,
                 const Tensor<1, dim> &slip_direction,
                 const Tensor<1, dim> &reference,
-                Tensor<1, dim>       &velocity,
-                const double          allowed = 0.);
+                Tensor<1, dim>       &velocity);
 
     /**
      * The state of a wall with @p condition and outward normal @p normal
@@ -191,8 +198,8 @@ namespace grainmpm
 
     /**
      * The unilateral wall condition with outward wall normal @p normal
-     * applied to @p velocity (classify_wall, then apply_state with the wall
-     * at rest).
+     * applied to @p velocity (classify_wall with the approach @p allowed by
+     * the gap, then apply_state with the wall at rest).
      */
     static void
     apply_wall(const BoundaryCondition &condition,

@@ -26,13 +26,13 @@ namespace grainmpm
    * The contact and wall status of one step (the active set of the
    * implicit scheme): per slot at a contact node and per (slot, closed
    * face) at the boundary, the state of the constraint, its slip direction
-   * and, at contact nodes, the partner velocity v_ref and the approach the
-   * gap allows. freeze() decides it with the contact law of GrainContact
-   * (ContactLaw::project_node(), then the walls); apply() applies it with
-   * the states frozen (ContactLaw::project_node_frozen(), then the walls).
-   * Given the status, the constraints are an affine map of the velocities
-   * they act on; the variants of apply() give the simplified map of the
-   * preconditioners and the linear parts of both maps.
+   * and, at contact nodes, the partner velocity v_ref. The approach the
+   * gap allows enters only the decisions: freeze() decides it with the contact
+   * law of GrainContact (ContactLaw::project_node(), then the walls); apply()
+   * applies it with the states frozen (ContactLaw::project_node_frozen(), then
+   * the walls). Given the status, the constraints are an affine map of the
+   * velocities they act on; the variants of apply() give the simplified map of
+   * the preconditioners and the linear parts of both maps.
    */
   template <int dim>
   class ContactStatus
@@ -99,7 +99,7 @@ namespace grainmpm
 
     /**
      * The linear part of apply_simplified(), which acts on differences of
-     * velocities: v_ref zero, and no approach allowed by the gaps.
+     * velocities: v_ref zero.
      */
     void
     apply_simplified_linear_part(const GrainContact<dim>     &contact,
@@ -111,10 +111,9 @@ namespace grainmpm
     /**
      * The linear part of apply() that the assembled preconditioner needs:
      * v_ref from the velocities with the shift, as apply() takes it, but
-     * without the approach the gaps allow and without the friction of
-     * sliding slots and walls (the tangential correction that follows the
-     * normal one). This is the symmetric part of the linearised frozen
-     * projection, which couples the fields of a node.
+     * without the friction of sliding slots and walls (the tangential
+     * correction that follows the normal one). This is the symmetric part of
+     * the linearised frozen projection, which couples the fields of a node.
      */
     void
     apply_symmetric_linear_part(const GrainContact<dim>     &contact,
@@ -127,15 +126,12 @@ namespace grainmpm
     std::vector<ContactState>   slot_state;
     std::vector<Tensor<1, dim>> slip_directions;
     std::vector<Tensor<1, dim>> references;
-    /** The approach speed the gap allows per owned slot (gap check). */
-    std::vector<double> allowed;
 
     /** Wall entries: (slot, face) of deformable slots at closed faces. */
     std::vector<unsigned int>   wall_slots;
     std::vector<unsigned char>  wall_faces;
     std::vector<ContactState>   wall_state;
     std::vector<Tensor<1, dim>> wall_slip_directions;
-    std::vector<double>         wall_allowed;
 
     /** Whether any slot or wall entry is not free. */
     bool any_active = false;
@@ -145,9 +141,8 @@ namespace grainmpm
   private:
     /**
      * Which map apply_map() applies: the affine one or its linear part
-     * (without the approach the gaps allow, and v_ref zero where it is
-     * frozen), v_ref frozen or from the velocities, with or without
-     * friction.
+     * (v_ref zero where it is frozen), v_ref frozen or from the
+     * velocities, with or without friction.
      */
     struct Map
     {

@@ -21,12 +21,14 @@ namespace grainmpm
    * speed the gap between two surfaces allows a field in one step.
    *
    * Field g may approach its partner by the gap between their surfaces in
-   * one step: the contact law compares the approach D with the allowed
-   * approach speed a_g = (m_rest / m) gap / dt (a_g = gap / dt with a
-   * rigid partner or a wall; m_rest the mass of the node's other
-   * deformable fields, m of all), and removes only D - a_g (the friction
-   * bound is mu (D - a_g)). The shares m_rest / m make the two corrections
-   * of a two-field node equal and opposite, so momentum stays exact. The
+   * one step: the contact law compares the approach D (relative to the
+   * node's centre-of-mass velocity) with the allowed approach speed
+   * a_g = (m_rest / m) gap / dt (a_g = gap / dt with a rigid partner or a
+   * wall; m_rest the mass of the node's other deformable fields, m of all)
+   * and catches the field only if D > a_g (ContactLaw::classify()); a
+   * caught field then loses its whole approach. With two fields the shares
+   * m_rest / m make both decisions the same test, relative approach >
+   * gap / dt. The
    * gap comes from the fill fractions phi_g = sum_p V_p S_ip / V_i of the
    * node's support V_i (cut at the box faces): a flat surface filling phi
    * of the support lies at s = Phi^{-1}(phi) cells along the normal (Phi
