@@ -32,9 +32,7 @@ struct CentreStress
 
 template <typename Stepper>
 CentreStress
-load(Stepper                    &stepper,
-     ImplicitFixture<2> &fixture,
-     const double                cfl)
+load(Stepper &stepper, ImplicitFixture<2> &fixture, const double cfl)
 {
   using Layout           = MaterialPointLayout<2>;
   const double D         = 0.5;
@@ -87,12 +85,11 @@ load(Stepper                    &stepper,
       sum_stress += stress / n_points;
       ++n_samples;
     }
-  const double                P      = std::abs(sum_force) / n_samples;
-  const SymmetricTensor<2, 3> stress = sum_stress / n_samples;
-  const double                half_difference =
-    std::sqrt(0.25 * (stress[0][0] - stress[1][1]) *
-                (stress[0][0] - stress[1][1]) +
-              stress[0][1] * stress[0][1]);
+  const double                P               = std::abs(sum_force) / n_samples;
+  const SymmetricTensor<2, 3> stress          = sum_stress / n_samples;
+  const double                half_difference = std::sqrt(
+    0.25 * (stress[0][0] - stress[1][1]) * (stress[0][0] - stress[1][1]) +
+    stress[0][1] * stress[0][1]);
   return {stress[1][1] / stress[0][0],
           2. * half_difference / (8. * P / (numbers::PI * D))};
 }
@@ -130,12 +127,11 @@ main(int argc, char **argv)
     ImplicitFixture<2> fixture(text + "subsection Contact\n"
                                       "  set Gap check = false\nend\n",
                                "implicit_without_gap_check");
-    report("implicit, Gap check = false",
-           load(*fixture.stepper, fixture, 5.));
+    report("implicit, Gap check = false", load(*fixture.stepper, fixture, 5.));
   }
   {
-    ImplicitFixture<2> fixture(text, "explicit");
-    ExplicitLeapfrog<2>               stepper(fixture.parameters,
+    ImplicitFixture<2>  fixture(text, "explicit");
+    ExplicitLeapfrog<2> stepper(fixture.parameters,
                                 *fixture.grid,
                                 fixture.grains,
                                 fixture.materials);
