@@ -37,11 +37,27 @@ namespace grainmpm
         for (unsigned int s = begin; s < end; ++s)
           total += get_slot_vector<dim>(mass_gradients, s);
         // n_g ~ g_g - sum_{k != g} g_k = 2 g_g - total: for two fields the
-        // two normals are exactly opposite.
+        // two normals are exactly opposite. With the gap check, a deformable
+        // field whose mass gradient is smaller than a rigid partner's takes
+        // the rigid grain's normal: a curved grain resting on one node of a
+        // flat rigid face would otherwise get a normal that tilts with its
+        // displacement and pushes it further away.
+        Tensor<1, dim> rigid_gradient;
+        if (uses_gaps())
+          for (unsigned int s = begin; s < end; ++s)
+            if (field_is_rigid[layout.field(s)] &&
+                get_slot_vector<dim>(mass_gradients, s).norm() >
+                  rigid_gradient.norm())
+              rigid_gradient = get_slot_vector<dim>(mass_gradients, s);
         for (unsigned int s = begin; s < end; ++s)
           {
+            const Tensor<1, dim> gradient =
+              get_slot_vector<dim>(mass_gradients, s);
             const Tensor<1, dim> direction =
-              2. * get_slot_vector<dim>(mass_gradients, s) - total;
+              !field_is_rigid[layout.field(s)] &&
+                  rigid_gradient.norm() > gradient.norm() ?
+                -rigid_gradient :
+                2. * gradient - total;
             const double length = direction.norm();
             if (length > 0.)
               set_slot_vector<dim>(direction / length, normals, s);
