@@ -153,11 +153,12 @@ namespace grainmpm
      * The state of a velocity @p relative to its partner (or wall) with
      * the normal @p normal (pointing into the partner) and friction
      * coefficient @p mu: with D the approach speed, free if D <= @p allowed,
-     * sticking if mu D >= |v_t|, else sliding; sets the
-     * slip direction of a sliding state with friction, zero otherwise.
-     * With a hysteresis band @p band > 0 the tests are shifted against a
-     * change of the state @p previous: a constrained slot is released
-     * only when D < -band and a free one is caught only when D > band; a
+     * sticking if mu D >= |v_t|, else sliding; sets the slip direction of
+     * a sliding state with friction, zero otherwise. With a hysteresis
+     * band @p band > 0 the tests are shifted against a change of the state
+     * @p previous: a constrained slot is released only when
+     * D - allowed < -band and a free one is caught only when
+     * D - allowed > band; a
      * sticking slot slips only when |v_t| > mu D + band and a sliding one
      * sticks only when |v_t| < mu D - band.
      */

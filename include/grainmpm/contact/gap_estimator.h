@@ -28,13 +28,13 @@ namespace grainmpm
    * and catches the field only if D > a_g (ContactLaw::classify()); a
    * caught field then loses its whole approach. With two fields the shares
    * m_rest / m make both decisions the same test, relative approach >
-   * gap / dt. The
-   * gap comes from the fill fractions phi_g = sum_p V_p S_ip / V_i of the
-   * node's support V_i (cut at the box faces): a flat surface filling phi
-   * of the support lies at s = Phi^{-1}(phi) cells along the normal (Phi
-   * the integral of the hat, HatKernel), so gap = h_n (Phi^{-1}(1 -
-   * phi_rest) - Phi^{-1}(phi_g)), h_n the cell size along the normal; a
-   * wall gives gap = h (1 - sqrt(phi_g)). Two flat blocks in contact have
+   * gap / dt. The gap comes from the fill fractions
+   * phi_g = sum_p V_p S_ip / V_i of the node's support V_i (cut at the box
+   * faces): a flat surface filling phi of the support lies at
+   * s = Phi^{-1}(phi) cells along the normal (Phi the integral of the hat,
+   * HatKernel), so gap = h_n (Phi^{-1}(1 - phi_rest) - Phi^{-1}(phi_g)),
+   * h_n the cell size along the normal; a wall gives
+   * gap = h (1 - sqrt(phi_g)). Two flat blocks in contact have
    * phi_a + phi_b = 1, gap 0.
    */
   template <int dim>
