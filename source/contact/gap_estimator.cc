@@ -29,11 +29,23 @@ namespace grainmpm
       support *= grid.cell_size()[d];
     this->dt = dt;
     slot_fills.resize(layout.n_slots());
+    slot_volumes.resize(layout.n_slots());
+    slot_centroids.resize(layout.n_slots());
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       {
-        const unsigned int faces = grid.node_faces(layout.node(s));
-        slot_fills[s]            = volumes.local_element(s) *
-                        (1U << __builtin_popcount(faces)) / support;
+        const double volume = volumes.local_element((1 + dim) * s);
+        slot_volumes[s]     = volume;
+        slot_fills[s] =
+          volume * (1U << __builtin_popcount(grid.node_faces(layout.node(s)))) /
+          support;
+        slot_centroids[s] = Tensor<1, dim>();
+        if (volume > 0.)
+          {
+            const Point<dim> &node = grid.node_position(layout.node(s));
+            for (unsigned int d = 0; d < dim; ++d)
+              slot_centroids[s][d] =
+                volumes.local_element((1 + dim) * s + 1 + d) / volume - node[d];
+          }
       }
   }
 
@@ -78,6 +90,27 @@ namespace grainmpm
                                           deformable_mass) *
                        gap / dt;
       }
+  }
+
+
+
+  template <int dim>
+  double
+  GapEstimator<dim>::wall_allowed_approach(const unsigned int slot,
+                                           const unsigned int face) const
+  {
+    if (!is_enabled)
+      return 0.;
+    const double h = grid.cell_size()[face / 2];
+    if (!(slot_volumes[slot] > 0.))
+      return h / dt;
+    // The centroid's distance from the face, into the box.
+    const double depth =
+      (face % 2 == 0 ? 1. : -1.) * slot_centroids[slot][face / 2];
+    return h *
+           std::min(HatKernel::half_surface_from_centroid(depth / h),
+                    HatKernel::inverse_half_integral(slot_fills[slot])) /
+           dt;
   }
 
 

@@ -250,26 +250,35 @@ namespace grainmpm
   {
     // Built by all ranks together (their construction communicates).
     partitioners.clear();
+    partition_first_slot  = first_slot;
+    partition_ghost_slots = ghost_slot_numbers;
+    make_partitioner(1);
+    make_partitioner(dim);
+  }
+
+
+
+  template <int dim>
+  void
+  GrainFieldLayout<dim>::make_partitioner(const unsigned int components) const
+  {
     const types::global_dof_index n_owned = n_owned_slots;
     const types::global_dof_index n_total =
       Utilities::MPI::sum(n_owned, mpi_communicator);
-    for (const unsigned int components : {1U, static_cast<unsigned int>(dim)})
-      {
-        IndexSet owned(n_total * components);
-        owned.add_range(first_slot * components,
-                        (first_slot + n_owned) * components);
-        IndexSet                             ghosts(n_total * components);
-        std::vector<types::global_dof_index> indices;
-        indices.reserve(ghost_slot_numbers.size() * components);
-        for (const types::global_dof_index slot : ghost_slot_numbers)
-          for (unsigned int d = 0; d < components; ++d)
-            indices.push_back(slot * components + d);
-        ghosts.add_indices(indices.begin(), indices.end());
-        partitioners[components] =
-          std::make_shared<Utilities::MPI::Partitioner>(owned,
-                                                        ghosts,
-                                                        mpi_communicator);
-      }
+    IndexSet owned(n_total * components);
+    owned.add_range(partition_first_slot * components,
+                    (partition_first_slot + n_owned) * components);
+    IndexSet                             ghosts(n_total * components);
+    std::vector<types::global_dof_index> indices;
+    indices.reserve(partition_ghost_slots.size() * components);
+    for (const types::global_dof_index slot : partition_ghost_slots)
+      for (unsigned int d = 0; d < components; ++d)
+        indices.push_back(slot * components + d);
+    ghosts.add_indices(indices.begin(), indices.end());
+    partitioners[components] =
+      std::make_shared<Utilities::MPI::Partitioner>(owned,
+                                                    ghosts,
+                                                    mpi_communicator);
   }
 
 
@@ -280,8 +289,12 @@ namespace grainmpm
     LinearAlgebra::distributed::Vector<double> &vector,
     const unsigned int                          components) const
   {
-    const auto partitioner = partitioners.find(components);
-    Assert(partitioner != partitioners.end(), ExcNotImplemented());
+    auto partitioner = partitioners.find(components);
+    if (partitioner == partitioners.end())
+      {
+        make_partitioner(components);
+        partitioner = partitioners.find(components);
+      }
     if (vector.get_partitioner() != partitioner->second)
       vector.reinit(partitioner->second);
     else

@@ -114,7 +114,7 @@ namespace grainmpm
     if (mass_gradients != nullptr)
       layout.reinit_vector(*mass_gradients, dim);
     if (volumes != nullptr)
-      layout.reinit_vector(*volumes, 1);
+      layout.reinit_vector(*volumes, 1 + dim);
 
     // The loop with or without masses, mass gradients and volumes
     // (compile-time choices: a test in the inner loop costs 10 % of the
@@ -129,6 +129,15 @@ namespace grainmpm
         double *const  gradient_sum =
           add_gradients ? mass_gradients->begin() : nullptr;
         double *const volume_sum = add_volumes ? volumes->begin() : nullptr;
+        // The first moment of a particle's box (half-width l) under the
+        // hat: V_p (S_ip x_p + l^2 / 3 grad S_ip), exact where the hat is
+        // linear across the box.
+        Tensor<1, dim> box_moment;
+        for (unsigned int d = 0; d < dim; ++d)
+          box_moment[d] = Utilities::fixed_power<2>(
+                            0.5 * grid.cell_size()[d] /
+                            parameters.material_points.particles_per_cell) /
+                          3.;
         for_each_particle(
           particle_handler,
           [&](const std::size_t p, const auto &particle)
@@ -143,7 +152,14 @@ namespace grainmpm
                 if constexpr (add_masses)
                   mass_values[slot] += mass * shape;
                 if constexpr (add_volumes)
-                  volume_sum[slot] += volume * shape;
+                  {
+                    const Point<dim> &location = particle->get_location();
+                    double *const     sums     = volume_sum + slot * (1 + dim);
+                    sums[0] += volume * shape;
+                    for (unsigned int d = 0; d < dim; ++d)
+                      sums[1 + d] += volume * (shape * location[d] +
+                                               box_moment[d] * gradient[d]);
+                  }
                 for (unsigned int d = 0; d < dim; ++d)
                   {
                     momentum[slot * dim + d] +=

@@ -33,9 +33,13 @@ namespace grainmpm
    * faces): a flat surface filling phi of the support lies at
    * s = Phi^{-1}(phi) cells along the normal (Phi the integral of the hat,
    * HatKernel), so gap = h_n (Phi^{-1}(1 - phi_rest) - Phi^{-1}(phi_g)),
-   * h_n the cell size along the normal; a wall gives
-   * gap = h (1 - sqrt(phi_g)). Two flat blocks in contact have
-   * phi_a + phi_b = 1, gap 0.
+   * h_n the cell size along the normal. Two flat blocks in contact have
+   * phi_a + phi_b = 1, gap 0. A wall gives the smaller of
+   * h (1 - sqrt(phi_g)) and h (3 c - 1) / 2, c the centroid of the field's
+   * volume under the node's hat along the wall's normal in cells
+   * (c = 1/3 for material that reaches the wall): where a grain's corner
+   * covers only a part of the node's support along the wall, the filled
+   * fraction puts the surface away from the wall, the centroid does not.
    */
   template <int dim>
   class GapEstimator
@@ -54,9 +58,10 @@ namespace grainmpm
     }
 
     /**
-     * The fill fractions of the owned slots of @p layout from the slot
-     * volumes @p volumes (sum_p V_p S_ip), for a step of length @p dt: the
-     * data of the allowed approaches until the next call.
+     * The fill fractions and centroids of the owned slots of @p layout from
+     * @p volumes (per slot sum_p V_p S_ip and its first moment,
+     * Transfer::particles_to_grid()), for a step of length @p dt: the data
+     * of the allowed approaches until the next call.
      */
     void
     compute(const GrainFieldLayout<dim> &layout,
@@ -76,22 +81,21 @@ namespace grainmpm
     /** The approach speed the gap allows slot @p slot at box face @p face. */
     double
     wall_allowed_approach(const unsigned int slot,
-                          const unsigned int face) const
-    {
-      if (!is_enabled)
-        return 0.;
-      // The in-box half of the support along the wall normal.
-      return grid.cell_size()[face / 2] *
-             HatKernel::inverse_half_integral(slot_fills[slot]) / dt;
-    }
+                          const unsigned int face) const;
 
   private:
     const BackgroundGrid<dim> &grid;
     const bool                 is_enabled;
 
-    /** Fill fraction per owned slot, and the step length. */
-    std::vector<double> slot_fills;
-    double              dt = 0.;
+    /**
+     * Per owned slot the fraction of the node's support filled, the volume
+     * sum_p V_p S_ip and the centroid of that volume relative to the node
+     * (for the walls); the step length.
+     */
+    std::vector<double>         slot_fills;
+    std::vector<double>         slot_volumes;
+    std::vector<Tensor<1, dim>> slot_centroids;
+    double                      dt = 0.;
   };
 } // namespace grainmpm
 

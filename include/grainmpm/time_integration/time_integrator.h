@@ -43,7 +43,10 @@ namespace grainmpm
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
     VectorType masses;
-    /** Volumes sum_p V_p S_ip per slot (for the gap check of contact). */
+    /**
+     * Volumes sum_p V_p S_ip and their first moments sum_p V_p S_ip x_p
+     * per slot (1 + dim components, for the gap check of contact).
+     */
     VectorType volumes;
     VectorType momenta;
     VectorType mass_gradients;

@@ -119,7 +119,8 @@ namespace grainmpm
 
     /**
      * Size @p vector for @p components numbers per slot (owned and ghost
-     * slots), zeroed, ghosts included.
+     * slots), zeroed, ghosts included. Other numbers than 1 and dim make
+     * a partitioner on first use: all ranks call this together then.
      */
     void
     reinit_vector(LinearAlgebra::distributed::Vector<double> &vector,
@@ -161,11 +162,21 @@ namespace grainmpm
       std::vector<unsigned int>             &ghost_positions,
       std::vector<types::global_dof_index>  &ghost_slot_numbers);
 
-    /** The vector partitioners with 1 and dim numbers per slot. */
+    /**
+     * Keep @p first_slot and @p ghost_slot_numbers and make the vector
+     * partitioners with 1 and dim numbers per slot.
+     */
     void
     make_partitioners(
       const types::global_dof_index               first_slot,
       const std::vector<types::global_dof_index> &ghost_slot_numbers);
+
+    /**
+     * Make the vector partitioner with @p components numbers per slot
+     * (collective: all ranks call it together).
+     */
+    void
+    make_partitioner(const unsigned int components) const;
 
     std::vector<unsigned int> slot_nodes;
     std::vector<unsigned int> slot_fields;
@@ -174,8 +185,15 @@ namespace grainmpm
     unsigned int              n_owned_slots    = 0;
     unsigned int              n_owned_nodes    = 0;
     MPI_Comm                  mpi_communicator = MPI_COMM_SELF;
-    /** The vector partitioners of the current layout, by components. */
-    std::map<unsigned int, std::shared_ptr<const Utilities::MPI::Partitioner>>
+    /** This rank's first slot and its ghost slots' global numbers. */
+    types::global_dof_index              partition_first_slot = 0;
+    std::vector<types::global_dof_index> partition_ghost_slots;
+    /**
+     * The vector partitioners of the current layout, by components (1 and
+     * dim made with the layout, others when first asked for).
+     */
+    mutable std::map<unsigned int,
+                     std::shared_ptr<const Utilities::MPI::Partitioner>>
       partitioners;
 
     /** Scratch: fields seen at each node during reinit (fixed capacity). */

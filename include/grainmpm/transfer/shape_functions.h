@@ -13,9 +13,10 @@ namespace grainmpm
    * The one-dimensional hat N(u) = max(0, 1 - |u|) (u in cells from the
    * node) of which the shape functions are made: the Q1 hats are its
    * products, the GIMP weights its averages over a particle's box
-   * (TransferCache). Its integral Phi and the inverse of Phi also give
-   * where a flat surface lies that fills a given fraction of a node's
-   * support (the gap check of the contact law).
+   * (TransferCache). Its integral Phi, the inverse of Phi and the centroid
+   * of the half hat's weight also give where a flat surface lies that
+   * fills a given fraction of a node's support or whose material has a
+   * given centroid (the gap check of the contact law).
    */
   namespace HatKernel
   {
@@ -64,6 +65,22 @@ namespace grainmpm
     inverse_half_integral(const double phi)
     {
       return 1. - std::sqrt(std::min(1., phi));
+    }
+
+    /**
+     * For the half hat of a node on a box face (u in [0, 1] into the box):
+     * material from u to 1 has its weighted centroid int_u^1 t N / int_u^1 N
+     * at (1 + 2 u) / 3 cells from the face, so a flat surface whose
+     * material has its centroid at @p centroid cells lies
+     * (3 centroid - 1) / 2 cells from the face (clamped to [0, 1]). Unlike
+     * the filled fraction, the centroid does not change when the material
+     * covers only a part of the support along the face (a grain's corner
+     * at the node).
+     */
+    inline double
+    half_surface_from_centroid(const double centroid)
+    {
+      return std::min(1., std::max(0., 0.5 * (3. * centroid - 1.)));
     }
   } // namespace HatKernel
 } // namespace grainmpm

@@ -141,8 +141,11 @@ namespace grainmpm
     /**
      * Particle to grid: momenta sum_p m_p v_p S_ip and, if given, masses
      * sum_p m_p S_ip and (with them, if given) mass gradients
-     * sum_p m_p grad S_ip and volumes sum_p V_p S_ip per slot, completed
-     * on the owners.
+     * sum_p m_p grad S_ip and volumes per slot, completed on the owners.
+     * The volumes have 1 + dim components per slot: the volume
+     * sum_p V_p S_ip and its first moment sum_p V_p (S_ip x_p +
+     * l^2 / 3 grad S_ip) (l the half-width of a point's box: the moment of
+     * the box under the hat).
      */
     void
     particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
