@@ -29,12 +29,10 @@ namespace grainmpm
       support *= grid.cell_size()[d];
     this->dt = dt;
     slot_fills.resize(layout.n_slots());
-    slot_volumes.resize(layout.n_slots());
     slot_centroids.resize(layout.n_slots());
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       {
         const double volume = volumes.local_element((1 + dim) * s);
-        slot_volumes[s]     = volume;
         slot_fills[s] =
           volume * (1U << __builtin_popcount(grid.node_faces(layout.node(s)))) /
           support;
@@ -102,7 +100,7 @@ namespace grainmpm
     if (!is_enabled)
       return 0.;
     const double h = grid.cell_size()[face / 2];
-    if (!(slot_volumes[slot] > 0.))
+    if (!(slot_fills[slot] > 0.))
       return h / dt;
     // The centroid's distance from the face, into the box.
     const double depth =

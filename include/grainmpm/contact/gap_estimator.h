@@ -88,12 +88,11 @@ namespace grainmpm
     const bool                 is_enabled;
 
     /**
-     * Per owned slot the fraction of the node's support filled, the volume
-     * sum_p V_p S_ip and the centroid of that volume relative to the node
-     * (for the walls); the step length.
+     * Per owned slot the fraction of the node's support filled and the
+     * centroid of its volume relative to the node (for the walls); the
+     * step length.
      */
     std::vector<double>         slot_fills;
-    std::vector<double>         slot_volumes;
     std::vector<Tensor<1, dim>> slot_centroids;
     double                      dt = 0.;
   };

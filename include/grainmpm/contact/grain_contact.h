@@ -74,9 +74,10 @@ namespace grainmpm
     }
 
     /**
-     * The fill fractions and centroids of the owned slots of @p layout from the slot
-     * volumes and their moments @p volumes, for a step of length @p dt: the
-     * data of the gap check until the next call (GapEstimator::compute()).
+     * The fill fractions and centroids of the owned slots of @p layout from
+     * the slot volumes and their moments @p volumes, for a step of length
+     * @p dt: the data of the gap check until the next call
+     * (GapEstimator::compute()).
      */
     void
     compute_gaps(const GrainFieldLayout<dim> &layout,

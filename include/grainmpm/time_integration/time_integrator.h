@@ -44,8 +44,9 @@ namespace grainmpm
 
     VectorType masses;
     /**
-     * Volumes sum_p V_p S_ip and their first moments sum_p V_p S_ip x_p
-     * per slot (1 + dim components, for the gap check of contact).
+     * Volumes sum_p V_p S_ip and their first moments per slot (1 + dim
+     * components, Transfer::particles_to_grid(); for the gap check of
+     * contact).
      */
     VectorType volumes;
     VectorType momenta;
