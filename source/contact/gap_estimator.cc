@@ -32,12 +32,12 @@ namespace grainmpm
     slot_centroids.resize(layout.n_slots());
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       {
-        const double volume = volumes.local_element((1 + dim) * s);
-        slot_fills[s] =
-          volume * (1U << __builtin_popcount(grid.node_faces(layout.node(s)))) /
-          support;
+        const double       volume = volumes.local_element((1 + dim) * s);
+        const unsigned int faces  = grid.node_faces(layout.node(s));
+        slot_fills[s] = volume * (1U << __builtin_popcount(faces)) / support;
+        // Centroids only where the walls need them.
         slot_centroids[s] = Tensor<1, dim>();
-        if (volume > 0.)
+        if (faces != 0 && volume > 0.)
           {
             const Point<dim> &node = grid.node_position(layout.node(s));
             for (unsigned int d = 0; d < dim; ++d)

@@ -82,17 +82,11 @@ namespace grainmpm
   void
   Transfer<dim>::reinit(const Particles::ParticleHandler<dim> &particle_handler)
   {
-    // A particle's box is its share of the regular arrangement of the
-    // points: half the point spacing on each side.
-    Tensor<1, dim> half_width;
-    for (unsigned int d = 0; d < dim; ++d)
-      half_width[d] = 0.5 * grid.cell_size()[d] /
-                      parameters.material_points.particles_per_cell;
     cache.reinit(grid,
                  particle_handler,
                  field_of_grain,
                  parameters.material_points.shape_functions,
-                 half_width);
+                 point_half_width());
     layout.reinit(cache, grid);
   }
 
@@ -132,12 +126,10 @@ namespace grainmpm
         // The first moment of a particle's box (half-width l) under the
         // hat: V_p (S_ip x_p + l^2 / 3 grad S_ip), exact where the hat is
         // linear across the box.
-        Tensor<1, dim> box_moment;
+        const Tensor<1, dim> half_width = point_half_width();
+        Tensor<1, dim>       box_moment;
         for (unsigned int d = 0; d < dim; ++d)
-          box_moment[d] = Utilities::fixed_power<2>(
-                            0.5 * grid.cell_size()[d] /
-                            parameters.material_points.particles_per_cell) /
-                          3.;
+          box_moment[d] = half_width[d] * half_width[d] / 3.;
         for_each_particle(
           particle_handler,
           [&](const std::size_t p, const auto &particle)
@@ -145,6 +137,8 @@ namespace grainmpm
               const auto   properties = particle->get_properties();
               const double mass       = properties[Layout::mass];
               const double volume     = properties[Layout::volume];
+              [[maybe_unused]] const Point<dim> &location =
+                particle->get_location();
               cache.for_each_entry(p, [&](const unsigned int e) {
                 const unsigned int    slot     = cache.slots[e];
                 const double          shape    = cache.shape_values[e];
@@ -153,8 +147,7 @@ namespace grainmpm
                   mass_values[slot] += mass * shape;
                 if constexpr (add_volumes)
                   {
-                    const Point<dim> &location = particle->get_location();
-                    double *const     sums     = volume_sum + slot * (1 + dim);
+                    double *const sums = volume_sum + slot * (1 + dim);
                     sums[0] += volume * shape;
                     for (unsigned int d = 0; d < dim; ++d)
                       sums[1 + d] += volume * (shape * location[d] +

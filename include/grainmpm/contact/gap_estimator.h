@@ -88,9 +88,9 @@ namespace grainmpm
     const bool                 is_enabled;
 
     /**
-     * Per owned slot the fraction of the node's support filled and the
-     * centroid of its volume relative to the node (for the walls); the
-     * step length.
+     * Per owned slot the fraction of the node's support filled and, at
+     * nodes on a box face, the centroid of its volume relative to the node
+     * (for the walls); the step length.
      */
     std::vector<double>         slot_fills;
     std::vector<Tensor<1, dim>> slot_centroids;

@@ -277,6 +277,20 @@ namespace grainmpm
 
   private:
     /**
+     * The half-width l of a particle's box: its share of the regular
+     * arrangement of the points, half the point spacing on each side.
+     */
+    Tensor<1, dim>
+    point_half_width() const
+    {
+      Tensor<1, dim> half_width;
+      for (unsigned int d = 0; d < dim; ++d)
+        half_width[d] = 0.5 * grid.cell_size()[d] /
+                        parameters.material_points.particles_per_cell;
+      return half_width;
+    }
+
+    /**
      * Add the force of particle @p p (cache order) with @p mass, @p volume
      * and @p stress under @p gravity to @p forces (dim per local slot):
      * f_s += -V sigma . grad S_sp + m S_sp g (Cummins & Brackbill eq. 7).
