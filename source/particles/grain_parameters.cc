@@ -259,6 +259,17 @@ namespace grainmpm
                       "Seed of the random numbers (std::mt19937): the same "
                       "seed gives the same packing. Dimensionless.",
                       Patterns::Integer(0));
+    prm.add_parameter(
+      "Deposition",
+      deposition,
+      "How a dropped grain comes to rest. 'sticking': where it first "
+      "touches the floor or a grain (most grains then rest on one grain; "
+      "packing fraction 0.65 for 500 disks). 'rolling' (2D only): it then "
+      "rolls down over the grains it lands on until it rests on the floor, "
+      "against a side of the box, or on two grains on either side of its "
+      "centre, so that every grain is held from both sides (packing "
+      "fraction 0.75 for the same 500 disks).",
+      Patterns::Selection("sticking|rolling"));
     prm.leave_subsection();
   }
 
@@ -288,6 +299,10 @@ namespace grainmpm
     if (material.empty())
       throw InputError("Random packing/Material",
                        "name the material of the generated grains.");
+    if (deposition == "rolling" && dim != 2)
+      throw InputError("Random packing/Deposition = rolling",
+                       "rolling deposition is implemented in 2D only; use "
+                       "'sticking' in 3D.");
   }
 
 

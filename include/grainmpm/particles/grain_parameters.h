@@ -81,6 +81,8 @@ namespace grainmpm
     std::string        material;
     unsigned int       seed         = 1;
     unsigned int       n_candidates = 20;
+    /** "sticking" or "rolling" (2D): how a dropped grain comes to rest. */
+    std::string deposition = "sticking";
 
     void
     declare(dealii::ParameterHandler &prm);

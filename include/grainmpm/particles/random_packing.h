@@ -22,6 +22,16 @@ namespace grainmpm
    * 2 Maximum radius, so the cost is linear in the number of grains. The
    * run itself then settles the grains.
    *
+   * With Deposition = rolling (2D) a disk that lands on a grain then rolls
+   * down over it until it rests on the floor, against a side of the box,
+   * or on two grains on either side of its centre (rolling on over the
+   * grain it meets while both lie on one side, falling when it rolls past
+   * the level of its support's centre), as in the deposition model of
+   * Visscher & Bolsterli (Nature 239, 504, 1972): every disk is held from
+   * both sides, and the packing is denser. Its search over the grains met
+   * on the way is linear in their number, so the packing costs
+   * O(n^2) operations.
+   *
    * The random numbers come from std::mt19937 with the given seed,
    * converted to doubles by hand, so a seed gives the same packing on every
    * platform.
