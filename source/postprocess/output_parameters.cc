@@ -100,10 +100,13 @@ namespace grainmpm
     prm.add_parameter("Resume from",
                       resume_from,
                       "A checkpoint directory (for example "
-                      "results/checkpoint-000100) to continue from, with "
-                      "the same parameter file otherwise; energy.csv and "
-                      "grains.csv are cut back to the checkpoint and "
-                      "continued. Empty: start at t = 0.");
+                      "results/checkpoint-000100) to continue from; "
+                      "energy.csv and grains.csv are cut back to the "
+                      "checkpoint and continued. The grid, the materials "
+                      "and the grains must be those of the checkpoint's "
+                      "run (checked); the contact law, the loading, the "
+                      "scheme and its time step, the end time and the "
+                      "output may change. Empty: start at t = 0.");
     prm.add_parameter(
       "Replace other checkpoints",
       replace_other_checkpoints,
