@@ -26,46 +26,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <limits>
 
 #include "../tests.h"
 
+#include "../energy_csv.h"
+
 using namespace grainmpm;
-
-/** The rows of the CSV file @p file as numbers, with its column names. */
-std::pair<std::vector<std::string>, std::vector<std::vector<double>>>
-read_csv(const std::string &file)
-{
-  std::ifstream                    in(file);
-  std::string                      line, field;
-  std::vector<std::string>         names;
-  std::vector<std::vector<double>> rows;
-  std::getline(in, line);
-  std::istringstream header(line);
-  while (std::getline(header, field, ','))
-    names.push_back(field.substr(0, field.find(" [")));
-  while (std::getline(in, line))
-    {
-      std::vector<double> row;
-      std::istringstream  fields(line);
-      while (std::getline(fields, field, ','))
-        row.push_back(std::stod(field));
-      rows.push_back(row);
-    }
-  return {names, rows};
-}
-
-
-
-unsigned int
-column(const std::vector<std::string> &names, const std::string &name)
-{
-  const auto it = std::find(names.begin(), names.end(), name);
-  AssertThrow(it != names.end(), ExcMessage("no column " + name));
-  return it - names.begin();
-}
-
-
 
 void
 write_prm(const std::string &name,
@@ -97,19 +64,23 @@ write_prm(const std::string &name,
 
 
 
-/** The largest difference of the energy.csv rows up to @p last_step. */
+/**
+ * The largest difference between the columns of @p a and @p b in the rows
+ * up to @p last_step.
+ */
 double
-difference_up_to(const std::vector<std::vector<double>> &a,
-                 const std::vector<std::vector<double>> &b,
-                 const unsigned int                      last_step)
+difference_up_to(const std::map<std::string, std::vector<double>> &a,
+                 const std::map<std::string, std::vector<double>> &b,
+                 const unsigned int                                last_step)
 {
   double worst = 0.;
-  for (unsigned int r = 0; r <= last_step; ++r)
+  for (const auto &[name, values] : a)
     {
-      if (r >= a.size() || r >= b.size() || a[r].size() != b[r].size())
+      if (b.count(name) == 0 || values.size() <= last_step ||
+          b.at(name).size() <= last_step)
         return std::numeric_limits<double>::infinity();
-      for (unsigned int c = 0; c < a[r].size(); ++c)
-        worst = std::max(worst, std::abs(a[r][c] - b[r][c]));
+      for (unsigned int r = 0; r <= last_step; ++r)
+        worst = std::max(worst, std::abs(values[r] - b.at(name)[r]));
     }
   return worst;
 }
@@ -127,8 +98,8 @@ main(int argc, char **argv)
   std::filesystem::remove_all("results-first");
   write_prm("first.prm", "results-first", "explicit", slow, 0.1, "");
   grainmpm::run<2>("first.prm", MPI_COMM_WORLD);
-  const auto [names, first]    = read_csv("results-first/energy.csv");
-  const double checkpoint_time = first[checkpoint_step][column(names, "time")];
+  const auto   first           = read_energy("results-first");
+  const double checkpoint_time = first.at("time")[checkpoint_step];
 
   std::vector<double> platen_work;
   for (const std::string scheme : {"explicit", "implicit"})
@@ -146,36 +117,34 @@ main(int argc, char **argv)
                 directory + "/checkpoint-000600");
       grainmpm::run<2>(scheme + ".prm", MPI_COMM_WORLD);
 
-      const auto [energy_names, energy] = read_csv(directory + "/energy.csv");
+      const auto energy = read_energy(directory);
       deallog << scheme << ": energy.csv up to the checkpoint as written: "
               << (difference_up_to(first, energy, checkpoint_step) == 0. ?
                     "yes" :
                     "no")
               << std::endl;
 
-      const unsigned int newton = column(energy_names, "newton_iterations");
-      bool               scheme_used = energy.back()[1] > end_time - 1e-12;
-      for (unsigned int r = checkpoint_step + 1; r < energy.size(); ++r)
-        scheme_used =
-          scheme_used && (scheme == "explicit" ? energy[r][newton] == 0. :
-                                                 energy[r][newton] >= 1.);
-      deallog << scheme << ": " << energy.size() - 1 - checkpoint_step
+      const std::vector<double> &newton = energy.at("newton_iterations");
+      bool scheme_used = energy.at("time").back() > end_time - 1e-12;
+      for (unsigned int r = checkpoint_step + 1; r < newton.size(); ++r)
+        scheme_used = scheme_used && (scheme == "explicit" ? newton[r] == 0. :
+                                                             newton[r] >= 1.);
+      deallog << scheme << ": " << newton.size() - 1 - checkpoint_step
               << " steps after the checkpoint, all of the " << scheme
               << " scheme: " << (scheme_used ? "yes" : "no") << std::endl;
 
       // The platen (grain 2) at the checkpoint, from its last output
       // before it, and at the end.
-      const auto [grain_names, grains] = read_csv(directory + "/grains.csv");
-      const unsigned int time          = column(grain_names, "time");
-      const unsigned int y             = column(grain_names, "centre_y");
-      double             y_checkpoint = 0., y_end = 0., t_end = 0.;
-      for (const auto &row : grains)
-        if (row[column(grain_names, "grain")] == 2.)
+      const auto grains       = read_csv(directory + "/grains.csv");
+      double     y_checkpoint = 0., y_end = 0., t_end = 0.;
+      for (unsigned int r = 0; r < grains.at("time").size(); ++r)
+        if (grains.at("grain")[r] == 2.)
           {
-            if (row[time] < checkpoint_time)
-              y_checkpoint = row[y] - slow * (checkpoint_time - row[time]);
-            t_end = row[time];
-            y_end = row[y];
+            const double t = grains.at("time")[r], y = grains.at("centre_y")[r];
+            if (t < checkpoint_time)
+              y_checkpoint = y - slow * (checkpoint_time - t);
+            t_end = t;
+            y_end = y;
           }
       deallog << scheme << ": platen moved at the new speed after the "
               << "checkpoint (to 1e-10): "
@@ -185,9 +154,8 @@ main(int argc, char **argv)
                     "no")
               << std::endl;
 
-      const unsigned int work = column(energy_names, "boundary_work");
-      platen_work.push_back(energy.back()[work] -
-                            energy[checkpoint_step][work]);
+      const std::vector<double> &work = energy.at("boundary_work");
+      platen_work.push_back(work.back() - work[checkpoint_step]);
     }
   deallog << "platen work after the checkpoint, implicit / explicit within "
           << "2 %: "
