@@ -114,7 +114,8 @@ main(int argc, char **argv)
                 scheme,
                 fast,
                 end_time,
-                directory + "/checkpoint-000600");
+                directory + "/checkpoint-" +
+                  Utilities::int_to_string(checkpoint_step, 6));
       grainmpm::run<2>(scheme + ".prm", MPI_COMM_WORLD);
 
       const auto energy = read_energy(directory);
