@@ -101,7 +101,8 @@ namespace grainmpm
                             Tensor<1, dim>       &slip_direction,
                             const double          allowed,
                             const ContactState    previous,
-                            const double          band)
+                            const double          band,
+                            const bool            keep)
   {
     // D of eq. (5): approaching iff relative . n > 0 (beyond the approach
     // the gap allows); then stick if mu D >= |v_t| (mu' = min(mu, C/D) =
@@ -121,9 +122,10 @@ namespace grainmpm
                                           previous == ContactState::sliding ? -band :
                                                                               0.) :
                                          0.;
-    // A caught field loses its whole approach (below), so the friction
-    // bound is mu times the whole normal speed.
-    if (mu > 0. && mu * normal_speed + stick_shift >= slip)
+    // The friction bound is mu times the approach the constraint removes:
+    // the whole normal speed, or what exceeds the kept approach.
+    const double removed = keep ? approach : normal_speed;
+    if (mu > 0. && mu * removed + stick_shift >= slip)
       return ContactState::sticking;
     if (mu > 0.)
       slip_direction = tangential / slip;
@@ -139,13 +141,14 @@ namespace grainmpm
                                const double          mu,
                                const Tensor<1, dim> &slip_direction,
                                const Tensor<1, dim> &reference,
-                               Tensor<1, dim>       &velocity)
+                               Tensor<1, dim>       &velocity,
+                               const double          kept)
   {
     if (state == ContactState::sticking)
-      velocity = reference;
+      velocity = reference + kept * normal;
     else if (state == ContactState::sliding)
       {
-        const double approach = (velocity - reference) * normal;
+        const double approach = (velocity - reference) * normal - kept;
         velocity -= approach * normal + (mu * approach) * slip_direction;
       }
   }
@@ -174,25 +177,35 @@ namespace grainmpm
           continue;
         ContactState   state = ContactState::sticking;
         Tensor<1, dim> slip_direction;
+        double         kept = 0.;
         // Without contact (a single deformable field), deformable
         // material sticks to a rigid body.
         if (options.model != ContactModel::none)
           {
             if (normals[k].norm_square() == 0.)
               continue;
-            state = classify(velocities[k] - reference,
+            const double allowed_k = allowed != nullptr ? allowed[k] : 0.;
+            state                  = classify(velocities[k] - reference,
                              normals[k],
                              mu,
                              slip_direction,
-                             allowed != nullptr ? allowed[k] : 0.,
+                             allowed_k,
                              previous_states != nullptr ? previous_states[k] :
-                                                          ContactState::free,
-                             previous_states != nullptr ? options.band : 0.);
+                                                                           ContactState::free,
+                             previous_states != nullptr ? options.band : 0.,
+                             options.keep_allowed_approach);
             if (state == ContactState::free)
               continue; // separating: free
+            if (options.keep_allowed_approach)
+              kept = allowed_k;
           }
-        apply_state(
-          state, normals[k], mu, slip_direction, reference, velocities[k]);
+        apply_state(state,
+                    normals[k],
+                    mu,
+                    slip_direction,
+                    reference,
+                    velocities[k],
+                    kept);
         if (states != nullptr)
           {
             states[k]          = state;
@@ -283,7 +296,8 @@ namespace grainmpm
                   mu,
                   slip_directions[k],
                   reference,
-                  node.velocities[k]);
+                  node.velocities[k],
+                  node.allowed != nullptr ? node.allowed[k] : 0.);
     // Three or more deformable fields: one momentum-restoring shift. The
     // map stays linear in the velocities; alternating it with the frozen
     // projection until the shift vanishes converges slowly without
@@ -307,7 +321,8 @@ namespace grainmpm
                                  Tensor<1, dim>          &slip_direction,
                                  const double             allowed,
                                  const ContactState       previous,
-                                 const double             band)
+                                 const double             band,
+                                 const bool               keep)
   {
     slip_direction = Tensor<1, dim>();
     switch (condition.type)
@@ -326,7 +341,8 @@ namespace grainmpm
                           slip_direction,
                           allowed,
                           previous,
-                          band);
+                          band,
+                          keep);
       }
     return ContactState::free;
   }

@@ -20,6 +20,8 @@ namespace grainmpm
     slot_state.assign(n_slots, ContactState::free);
     slip_directions.assign(n_slots, Tensor<1, dim>());
     references.assign(n_slots, Tensor<1, dim>());
+    slot_kept.assign(n_slots, 0.);
+    slot_flips.assign(n_slots, 0);
     wall_slots.clear();
     wall_faces.clear();
     for (const unsigned int node : grid.boundary_nodes())
@@ -39,8 +41,67 @@ namespace grainmpm
       }
     wall_state.assign(wall_slots.size(), ContactState::free);
     wall_slip_directions.assign(wall_slots.size(), Tensor<1, dim>());
+    wall_kept.assign(wall_slots.size(), 0.);
+    wall_flips.assign(wall_slots.size(), 0);
     any_active = false;
     decided    = false;
+  }
+
+
+
+  template <int dim>
+  bool
+  ContactStatus<dim>::settle(const ContactState    before,
+                             const Tensor<1, dim> &before_direction,
+                             const bool            only_relax,
+                             ContactState         &state,
+                             Tensor<1, dim>       &direction,
+                             unsigned char        &flips)
+  {
+    // A primal-dual active set may cycle: a slot caught at one iterate is
+    // released at the next and caught again. After max_flips changes in a
+    // step (or for every entry with @p only_relax) an entry is settled:
+    // it may be released or stick, but a free entry is not caught again
+    // (it may close its gap a little beyond the bound, which the next
+    // step's gap sees) and a sticking one does not slip again. Neither a
+    // free entry nor a sticking one can do work against the motion that
+    // a constraint resists; friction along a stale slip direction could.
+    const bool settled = only_relax || flips >= max_flips;
+    if (state == before)
+      {
+        // A sliding entry keeps its slip direction while the new one is
+        // within 30 degrees of it (the friction force then still takes at
+        // least 0.87 of its bound against the slip); a larger turn counts
+        // as a change, and a settled entry whose slip turns sticks.
+        const bool turns = state == ContactState::sliding &&
+                           (direction - before_direction).norm_square() > 0. &&
+                           direction * before_direction < 0.866;
+        if (!turns)
+          direction = before_direction;
+        else if (!settled)
+          flips = std::min(flips + 1, 255);
+        else
+          {
+            state     = ContactState::sticking;
+            direction = Tensor<1, dim>();
+          }
+        return false;
+      }
+    if (!settled || state != ContactState::sliding)
+      {
+        if (before == ContactState::free && settled)
+          {
+            state     = ContactState::free;
+            direction = Tensor<1, dim>();
+            return true;
+          }
+        flips = std::min(flips + 1, 255);
+        return false;
+      }
+    // Settled, sliding where it was free or stuck.
+    state     = before;
+    direction = Tensor<1, dim>();
+    return true;
   }
 
 
@@ -53,27 +114,38 @@ namespace grainmpm
                              const VectorType            &normals,
                              const VectorType            &velocities,
                              const double                 mass_threshold,
-                             const double                 band)
+                             const double                 band,
+                             const bool                   catches)
   {
-    // The states decided before, for the hysteresis.
-    const bool                hysteresis = band > 0. && decided;
-    std::vector<ContactState> previous_slots, previous_walls;
-    if (hysteresis)
-      {
-        previous_slots = slot_state;
-        previous_walls = wall_state;
-      }
+    // The status decided before in this step: for the hysteresis, and to
+    // settle decisions that would cycle (settle()).
+    const bool               had_status = decided;
+    const bool               hysteresis = band > 0. && had_status;
+    const ContactStatus<dim> previous =
+      had_status ? *this : ContactStatus<dim>();
 
     // Contact: the decisions of the contact law at these velocities.
     std::fill(slot_state.begin(), slot_state.end(), ContactState::free);
-    VectorType projected(velocities);
+    std::fill(slot_kept.begin(), slot_kept.end(), 0.);
+    VectorType        projected(velocities);
+    ContactLawOptions options     = contact.law_options(mass_threshold, band);
+    options.keep_allowed_approach = keep_allowed_approach;
     contact.decide_contact(layout,
                            masses,
                            normals,
                            projected,
-                           contact.law_options(mass_threshold, band),
-                           hysteresis ? &previous_slots : nullptr,
+                           options,
+                           hysteresis ? &previous.slot_state : nullptr,
                            *this);
+    if (had_status)
+      for (unsigned int s = 0; s < slot_state.size(); ++s)
+        if (settle(previous.slot_state[s],
+                   previous.slip_directions[s],
+                   !catches,
+                   slot_state[s],
+                   slip_directions[s],
+                   slot_flips[s]))
+          slot_kept[s] = previous.slot_kept[s];
 
     // Walls see the velocities after contact, face after face.
     const BackgroundGrid<dim> &grid = contact.get_grid();
@@ -85,20 +157,34 @@ namespace grainmpm
         const Tensor<1, dim> normal =
           ContactLaw<dim>::face_normal(wall_faces[w]);
         Tensor<1, dim> velocity = get_slot_vector<dim>(projected, s);
-        wall_state[w]           = ContactLaw<dim>::classify_wall(
-          condition,
-          normal,
-          velocity,
-          wall_slip_directions[w],
-          contact.get_gaps().wall_allowed_approach(s, wall_faces[w]),
-          hysteresis ? previous_walls[w] : ContactState::free,
-          hysteresis ? band : 0.);
+        const double   allowed =
+          contact.get_gaps().wall_allowed_approach(s, wall_faces[w]);
+        wall_state[w] =
+          ContactLaw<dim>::classify_wall(condition,
+                                         normal,
+                                         velocity,
+                                         wall_slip_directions[w],
+                                         allowed,
+                                         hysteresis ? previous.wall_state[w] :
+                                                      ContactState::free,
+                                         hysteresis ? band : 0.,
+                                         keep_allowed_approach);
+        if (had_status)
+          settle(previous.wall_state[w],
+                 previous.wall_slip_directions[w],
+                 !catches,
+                 wall_state[w],
+                 wall_slip_directions[w],
+                 wall_flips[w]);
+        wall_kept[w] = ContactLaw<dim>::wall_kept_approach(
+          condition, wall_state[w], allowed, keep_allowed_approach);
         ContactLaw<dim>::apply_state(wall_state[w],
                                      normal,
                                      ContactLaw<dim>::wall_friction(condition),
                                      wall_slip_directions[w],
                                      Tensor<1, dim>(),
-                                     velocity);
+                                     velocity,
+                                     wall_kept[w]);
         set_slot_vector<dim>(velocity, projected, s);
       }
     const auto active = [](const ContactState state) {
@@ -119,9 +205,10 @@ namespace grainmpm
                             const VectorType            &normals,
                             VectorType                  &velocities,
                             std::vector<unsigned char>  *node_in_contact,
-                            ConstraintImpulses<dim>     *impulses) const
+                            ConstraintImpulses<dim>     *impulses,
+                            const bool                   kept) const
   {
-    return apply_map({true, false, true},
+    return apply_map({true, false, true, kept},
                      contact,
                      layout,
                      masses,
@@ -141,7 +228,7 @@ namespace grainmpm
                                        const VectorType            &normals,
                                        VectorType &velocities) const
   {
-    return apply_map({true, true, true},
+    return apply_map({true, true, true, true},
                      contact,
                      layout,
                      masses,
@@ -162,7 +249,7 @@ namespace grainmpm
     const VectorType            &normals,
     VectorType                  &differences) const
   {
-    apply_map({false, true, true},
+    apply_map({false, true, true, false},
               contact,
               layout,
               masses,
@@ -183,7 +270,7 @@ namespace grainmpm
     const VectorType            &normals,
     VectorType                  &velocities) const
   {
-    apply_map({false, false, false},
+    apply_map({false, false, false, false},
               contact,
               layout,
               masses,
@@ -237,6 +324,8 @@ namespace grainmpm
         if (impulses != nullptr)
           before = fields.velocities;
         ContactNode<dim> view = fields.view();
+        if (map.affine && map.kept && keep_allowed_approach)
+          view.allowed = slot_kept.data() + begin;
         ContactLaw<dim>::project_node_frozen(view,
                                              slot_state.data() + begin,
                                              slip_directions.data() + begin,
@@ -257,15 +346,16 @@ namespace grainmpm
           const unsigned int   face     = wall_faces[w];
           Tensor<1, dim>       velocity = get_slot_vector<dim>(velocities, s);
           const Tensor<1, dim> before   = velocity;
-          ContactLaw<dim>::apply_state(wall_state[w],
-                                       ContactLaw<dim>::face_normal(face),
-                                       map.friction ?
-                                         ContactLaw<dim>::wall_friction(
-                                           grid.boundary_condition(face)) :
-                                         0.,
-                                       wall_slip_directions[w],
-                                       Tensor<1, dim>(),
-                                       velocity);
+          ContactLaw<dim>::apply_state(
+            wall_state[w],
+            ContactLaw<dim>::face_normal(face),
+            map.friction ?
+              ContactLaw<dim>::wall_friction(grid.boundary_condition(face)) :
+              0.,
+            wall_slip_directions[w],
+            Tensor<1, dim>(),
+            velocity,
+            map.affine && map.kept ? wall_kept[w] : 0.);
           set_slot_vector<dim>(velocity, velocities, s);
           if (impulses != nullptr)
             impulses->add_wall(face, masses.local_element(s), before, velocity);

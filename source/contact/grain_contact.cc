@@ -161,6 +161,15 @@ namespace grainmpm
               status->slot_state[fields.begin + k]      = node_states[k];
               status->slip_directions[fields.begin + k] = node_slips[k];
               status->references[fields.begin + k]      = reference;
+              // The approach a constrained slot keeps (with a contact
+              // model: without, deformable material sticks to a rigid
+              // body).
+              status->slot_kept[fields.begin + k] =
+                options.keep_allowed_approach &&
+                    options.model != ContactModel::none &&
+                    node_states[k] != ContactState::free ?
+                  node_allowed[k] :
+                  0.;
             }
         if (corrected)
           {

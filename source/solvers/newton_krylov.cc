@@ -307,7 +307,7 @@ namespace grainmpm
                                  const VectorType &x,
                                  IterationState   &state) const
   {
-    problem.update_linearization(x);
+    problem.update_linearization(x, false);
     problem.residual(x, state.r);
     state.norm = state.r.l2_norm();
     if (!std::isfinite(state.norm))
@@ -512,11 +512,13 @@ namespace grainmpm
                                     IterationState   &state,
                                     NewtonStatistics &statistics) const
   {
-    // Re-evaluate the contact status between iterations (at most Maximum
-    // contact status changes discrete changes).
-    if (statistics.status_changes >= nonlinear.max_status_changes)
-      return "";
-    const NonlinearProblem::Change change = problem.update_linearization(x);
+    // Re-evaluate the contact status after every iteration: a primal-dual
+    // active set, whose converged status is consistent with the converged
+    // velocities (no constraint pulls, no free slot passes its bound).
+    // After Maximum contact status changes discrete changes it may only
+    // release constraints, so that a status that would cycle settles.
+    const NonlinearProblem::Change change = problem.update_linearization(
+      x, statistics.status_changes >= nonlinear.max_status_changes);
     if (change == NonlinearProblem::Change::discrete)
       {
         ++statistics.status_changes;

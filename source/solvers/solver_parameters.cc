@@ -111,11 +111,13 @@ namespace grainmpm
       "Maximum contact status changes",
       max_status_changes,
       "The contact status (which grains touch, stick or slip) is frozen "
-      "within a Newton iteration and re-evaluated between iterations; after "
-      "this many changes in one step it is kept fixed. With 2 it is decided "
-      "at the first iterate and after the first two Newton iterations; on "
-      "packings further changes flip contacts back and forth without "
-      "settling, and frictional contacts need the second. Dimensionless.",
+      "within a Newton iteration and re-evaluated after every iteration (a "
+      "primal-dual active set): a constraint whose reaction would pull is "
+      "released, a free field that would pass the approach its gap allows "
+      "is caught. A contact that has changed twice in a step may after "
+      "that only be released or slip; after this many changes of the "
+      "whole status in one step, every contact may only be released or "
+      "slip, so that a status that would cycle settles. Dimensionless.",
       Patterns::Integer(0, 100));
     prm.add_parameter(
       "Contact status tolerance",

@@ -92,6 +92,9 @@ namespace grainmpm
       }
 
     status.reinit(contact, *layout);
+    // The contact inequality: the theta velocity approaches at most at the
+    // speed that closes the gap within the step.
+    status.keep_allowed_approach = true;
     preconditioner_pattern_stale = true;
 
     work_projected.reinit(old_velocities, true);
@@ -108,7 +111,8 @@ namespace grainmpm
 
   template <int dim>
   NonlinearProblem::Change
-  ThetaResidual<dim>::freeze_status(const VectorType &velocities)
+  ThetaResidual<dim>::freeze_status(const VectorType &velocities,
+                                    const bool        monotone)
   {
     // Contact is detected on the theta velocity of what the momentum
     // balance asks for, V - R_raw(V) = v^n + dt (f / m + g) (the explicit
@@ -131,7 +135,8 @@ namespace grainmpm
                   *normals,
                   trial_velocities,
                   mass_threshold,
-                  status_band);
+                  status_band,
+                  !monotone);
     // The change on any rank (the solver's decisions must agree).
     unsigned int change = 0;
     if (old_status.slot_state != status.slot_state ||
@@ -191,10 +196,11 @@ namespace grainmpm
   ThetaResidual<dim>::project(const VectorType           &velocities,
                               VectorType                 &projected,
                               std::vector<unsigned char> *node_in_contact,
-                              ConstraintImpulses<dim>    *impulses) const
+                              ConstraintImpulses<dim>    *impulses,
+                              const bool                  kept) const
   {
     copy_slot_vector(velocities, projected);
-    return apply_projection(projected, false, node_in_contact, impulses);
+    return apply_projection(projected, false, node_in_contact, impulses, kept);
   }
 
 
@@ -205,7 +211,8 @@ namespace grainmpm
     VectorType                 &v,
     const bool                  simplified,
     std::vector<unsigned char> *node_in_contact,
-    ConstraintImpulses<dim>    *impulses) const
+    ConstraintImpulses<dim>    *impulses,
+    const bool                  kept) const
   {
     // v -> (1 - theta) v^n + theta v, project, and back. The map is affine
     // (its linear part, on differences of velocities, is
@@ -224,8 +231,14 @@ namespace grainmpm
     const unsigned int n_active =
       simplified ?
         status.apply_simplified(contact, *layout, *masses, *normals, v) :
-        status.apply(
-          contact, *layout, *masses, *normals, v, node_in_contact, impulses);
+        status.apply(contact,
+                     *layout,
+                     *masses,
+                     *normals,
+                     v,
+                     node_in_contact,
+                     impulses,
+                     kept);
     if (impulses != nullptr)
       impulses->scale = 1.;
     for (unsigned int k = 0; k < n; ++k)

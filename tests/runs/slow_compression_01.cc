@@ -6,7 +6,7 @@
 // energy the platen puts in (boundary work W) and what the disks hold at
 // the end (kinetic + elastic energy E):
 // - implicit theta = 1/2 at 30 times the explicit step: E / W = 0.99, with
-//   4 Newton iterations per step and no rejected step;
+//   4.6 Newton iterations per step and no rejected step;
 // - explicit, Stress update = USL (the shipped explicit case): W within
 //   2.3 % of the implicit one, E / W = 0.91 (energy lost, not created);
 // - explicit with the default USF: the strain velocity differs from the
@@ -71,11 +71,13 @@ main(int argc, char **argv)
           << yes(implicit.E / implicit.W > 0.97 && implicit.E <= implicit.W)
           << std::endl;
   // At 30 times the explicit step the contact status of a slowly
-  // compressed packing is decided with two updates a step (Nonlinear
-  // solver/Maximum contact status changes = 2): 4 Newton iterations; with
-  // five, the solve ran to the cap at every step (6.3 iterations).
-  deallog << "implicit: at most 4 Newton iterations per step on average: "
-          << yes(implicit.newton_per_step <= 4.)
+  // compressed packing is updated after every Newton iteration until it
+  // settles (a few slots change at each of the first iterations): 4.6
+  // Newton iterations a step. With the status fixed after two changes it
+  // was 4.0, with an unconverged status; with every update allowed but
+  // without the rules that settle it, the solve ran to the cap.
+  deallog << "implicit: at most 5 Newton iterations per step on average: "
+          << yes(implicit.newton_per_step <= 5.)
           << ", no rejected step: " << yes(implicit.rejected == 0.)
           << std::endl;
   deallog << "explicit USL: W within 5 % of the implicit W: "

@@ -41,6 +41,12 @@ namespace grainmpm
     double mass_threshold = 0.;
     /** The hysteresis band (a velocity; with previous states only). */
     double band = 0.;
+    /**
+     * A caught field keeps the approach the gap allows (the implicit
+     * contact inequality: the gap closes exactly within the step) instead
+     * of losing its whole approach.
+     */
+    bool keep_allowed_approach = false;
 
     /** The friction coefficient of the model (0 without friction). */
     double
@@ -72,7 +78,8 @@ namespace grainmpm
 
     /**
      * The approach speed the gap allows each field (none: 0): a field that
-     * approaches no faster is left alone.
+     * approaches no faster is left alone. With frozen states
+     * (project_node_frozen()), the approach each constrained field keeps.
      */
     const double *allowed = nullptr;
     /** ContactLaw::project_node(): the states decided, with hysteresis. */
@@ -110,11 +117,12 @@ namespace grainmpm
    * pass decides again, so no field is left approaching; with frozen
    * states (implicit), each pass applies the same states, so every
    * constrained field satisfies its constraint. With an allowed approach
-   * a_g (the gap check, GapEstimator) a field is caught only if D > a_g:
-   * it then loses its whole approach, as without the gap check. The gap
-   * decides whether the surfaces meet within the step; the constraint
-   * itself stays the one that does no work (on the theta velocity of the
-   * implicit scheme).
+   * a_g (the gap check, GapEstimator) a field is caught only if D > a_g.
+   * In the explicit scheme it then loses its whole approach, as without
+   * the gap check. In the implicit scheme
+   * (ContactLawOptions::keep_allowed_approach) it keeps the approach a_g:
+   * the constraint is the inequality D <= a_g on the theta velocity, so
+   * the gap closes exactly within the step and not before.
    */
   template <int dim>
   class ContactLaw
@@ -160,7 +168,9 @@ namespace grainmpm
      * D - allowed < -band and a free one is caught only when
      * D - allowed > band; a
      * sticking slot slips only when |v_t| > mu D + band and a sliding one
-     * sticks only when |v_t| < mu D - band.
+     * sticks only when |v_t| < mu D - band. With @p keep the caught field
+     * keeps the approach @p allowed, and D - allowed takes the place of D in
+     * the friction tests.
      */
     static ContactState
     classify(const Tensor<1, dim> &relative,
@@ -169,12 +179,14 @@ namespace grainmpm
              Tensor<1, dim>       &slip_direction,
              const double          allowed  = 0.,
              const ContactState    previous = ContactState::free,
-             const double          band     = 0.);
+             const double          band     = 0.,
+             const bool            keep     = false);
 
     /**
-     * Apply @p state to @p velocity with partner velocity @p reference:
-     * sticking takes v_ref, sliding removes the whole approach D and mu D
-     * of the slip along the slip direction.
+     * Apply @p state to @p velocity with partner velocity @p reference and
+     * the approach @p kept that the constraint leaves: sticking takes
+     * v_ref + kept n, sliding removes the approach beyond @p kept,
+     * D - kept, and mu (D - kept) of the slip along the slip direction.
      */
     static void
     apply_state(const ContactState    state,
@@ -182,7 +194,8 @@ namespace grainmpm
                 const double          mu,
                 const Tensor<1, dim> &slip_direction,
                 const Tensor<1, dim> &reference,
-                Tensor<1, dim>       &velocity);
+                Tensor<1, dim>       &velocity,
+                const double          kept = 0.);
 
     /**
      * The state of a wall with @p condition and outward normal @p normal
@@ -195,7 +208,25 @@ namespace grainmpm
                   Tensor<1, dim>          &slip_direction,
                   const double             allowed  = 0.,
                   const ContactState       previous = ContactState::free,
-                  const double             band     = 0.);
+                  const double             band     = 0.,
+                  const bool               keep     = false);
+
+    /**
+     * The approach a wall entry with @p condition in @p state keeps when
+     * the gap allows @p allowed and caught fields keep it (@p keep): none
+     * at no-slip walls and for free entries.
+     */
+    static double
+    wall_kept_approach(const BoundaryCondition &condition,
+                       const ContactState       state,
+                       const double             allowed,
+                       const bool               keep)
+    {
+      return keep && state != ContactState::free &&
+                 condition.type != BoundaryType::no_slip ?
+               allowed :
+               0.;
+    }
 
     /**
      * The unilateral wall condition with outward wall normal @p normal

@@ -57,7 +57,10 @@ namespace grainmpm
      * status frozen before in this step, the decisions have the
      * hysteresis of ContactLaw::classify() against the states frozen
      * before: a state changes only when the velocities cross its threshold
-     * by more than @p band.
+     * by more than @p band. Without @p catches (and with a status frozen
+     * before) the decisions may only release constraints: a free slot or
+     * wall entry stays free, a constrained one is released or keeps its
+     * state and slip direction, so that repeated decisions end.
      */
     void
     freeze(const GrainContact<dim>     &contact,
@@ -66,7 +69,8 @@ namespace grainmpm
            const VectorType            &normals,
            const VectorType            &velocities,
            const double                 mass_threshold,
-           const double                 band = 0.);
+           const double                 band    = 0.,
+           const bool                   catches = true);
 
     /**
      * Apply the frozen status to @p velocities in place: contact at the
@@ -74,7 +78,10 @@ namespace grainmpm
      * momentum-restoring shift at nodes of three or more deformable
      * fields), then the walls. Flags the nodes where contact is active in
      * @p node_in_contact (if given) and returns their number. With
-     * @p impulses, records the impulses of contact and walls.
+     * @p impulses, records the impulses of contact and walls. With
+     * @p kept (and #keep_allowed_approach) constrained slots keep the
+     * approach the gap allows them; without, they lose their whole
+     * approach.
      */
     unsigned int
     apply(const GrainContact<dim>     &contact,
@@ -83,7 +90,8 @@ namespace grainmpm
           const VectorType            &normals,
           VectorType                  &velocities,
           std::vector<unsigned char>  *node_in_contact = nullptr,
-          ConstraintImpulses<dim>     *impulses        = nullptr) const;
+          ConstraintImpulses<dim>     *impulses        = nullptr,
+          const bool                   kept            = true) const;
 
     /**
      * apply() with v_ref the value frozen with the status (no shift): the
@@ -122,16 +130,28 @@ namespace grainmpm
                                 const VectorType            &normals,
                                 VectorType                  &velocities) const;
 
-    /** State, slip direction and partner velocity v_ref per owned slot. */
+    /**
+     * Whether caught slots keep the approach the gap allows
+     * (ContactLawOptions::keep_allowed_approach): the implicit contact
+     * inequality. Set before freeze().
+     */
+    bool keep_allowed_approach = false;
+
+    /**
+     * State, slip direction, partner velocity v_ref and the approach kept
+     * (zero unless #keep_allowed_approach) per owned slot.
+     */
     std::vector<ContactState>   slot_state;
     std::vector<Tensor<1, dim>> slip_directions;
     std::vector<Tensor<1, dim>> references;
+    std::vector<double>         slot_kept;
 
     /** Wall entries: (slot, face) of deformable slots at closed faces. */
     std::vector<unsigned int>   wall_slots;
     std::vector<unsigned char>  wall_faces;
     std::vector<ContactState>   wall_state;
     std::vector<Tensor<1, dim>> wall_slip_directions;
+    std::vector<double>         wall_kept;
 
     /** Whether any slot or wall entry is not free. */
     bool any_active = false;
@@ -140,15 +160,44 @@ namespace grainmpm
 
   private:
     /**
+     * Changes of state an entry may make in a step before it may only
+     * relax (settle()).
+     */
+    static constexpr unsigned char max_flips = 2;
+
+    /** Discrete changes of state per slot and wall entry in this step. */
+    std::vector<unsigned char> slot_flips;
+    std::vector<unsigned char> wall_flips;
+
+    /**
+     * Settle the decision @p state (with slip direction @p direction) of an
+     * entry that was @p before (with @p before_direction) and has changed
+     * @p flips times in this step: a slip direction within 30 degrees of
+     * the one before is not a change; with @p only_relax, or after
+     * max_flips changes, a free entry stays free, a sticking one does not
+     * slip, and a sliding one whose slip turns sticks. Counts the change in
+     * @p flips. Returns whether the state before was restored.
+     */
+    static bool
+    settle(const ContactState    before,
+           const Tensor<1, dim> &before_direction,
+           const bool            only_relax,
+           ContactState         &state,
+           Tensor<1, dim>       &direction,
+           unsigned char        &flips);
+
+    /**
      * Which map apply_map() applies: the affine one or its linear part
-     * (v_ref zero where it is frozen), v_ref frozen or from the
-     * velocities, with or without friction.
+     * (v_ref zero where it is frozen, no kept approach), v_ref frozen or
+     * from the velocities, with or without friction, with or without the
+     * kept approaches (affine maps only).
      */
     struct Map
     {
       bool affine;
       bool frozen_reference;
       bool friction;
+      bool kept;
     };
 
     /** The frozen status applied as @p map says (see apply()). */

@@ -46,9 +46,13 @@ namespace grainmpm
     virtual void
     residual(const VectorType &x, VectorType &r) = 0;
 
-    /** Freeze the linearisation state at @p x. */
+    /**
+     * Freeze the linearisation state at @p x. With @p monotone the state
+     * may only shrink (constraints are released, none is added), so that
+     * repeated updates end.
+     */
     virtual Change
-    update_linearization(const VectorType &x) = 0;
+    update_linearization(const VectorType &x, const bool monotone) = 0;
 
     /**
      * Set up an assembled preconditioner of the Jacobian at @p x (with

@@ -66,7 +66,7 @@ namespace grainmpm
     double           differencing_error   = 0.;
     bool             line_search          = true;
     unsigned int     max_line_search_cuts = 10;
-    unsigned int     max_status_changes   = 2;
+    unsigned int     max_status_changes   = 10;
     /** Hysteresis band of the contact status, in units of U. */
     double status_tolerance = 0.;
     /** One screen line per Newton iteration and per solve. */

@@ -122,10 +122,12 @@ namespace grainmpm
     /**
      * Freeze the contact and wall status at @p velocities (a trial
      * v^{n+1}). Says whether a discrete state (free, sliding, sticking) or
-     * only a slip direction differs from the status frozen before.
+     * only a slip direction differs from the status frozen before. With
+     * @p monotone no free slot or wall entry is caught
+     * (ContactStatus::freeze()).
      */
     Change
-    freeze_status(const VectorType &velocities);
+    freeze_status(const VectorType &velocities, const bool monotone = false);
 
     /**
      * The hysteresis band of the status decisions after the first in a
@@ -144,11 +146,11 @@ namespace grainmpm
       evaluate(x, r);
     }
 
-    /** freeze_status(@p x). */
+    /** freeze_status(@p x, @p monotone). */
     Change
-    update_linearization(const VectorType &x) override
+    update_linearization(const VectorType &x, const bool monotone) override
     {
-      return freeze_status(x);
+      return freeze_status(x, monotone);
     }
 
     /**
@@ -206,13 +208,16 @@ namespace grainmpm
      * velocities) with the frozen status: the projection acts on the theta
      * velocity. Returns the number of nodes where contact is active. With
      * @p impulses, adds the impulses the projection gives the end
-     * velocities.
+     * velocities. With @p kept the constrained slots keep the approach the
+     * gap allows (the map of the residual); without, they lose their whole
+     * approach (ImplicitTheta's end velocity).
      */
     unsigned int
     project(const VectorType           &velocities,
             VectorType                 &projected,
             std::vector<unsigned char> *node_in_contact = nullptr,
-            ConstraintImpulses<dim>    *impulses        = nullptr) const;
+            ConstraintImpulses<dim>    *impulses        = nullptr,
+            const bool                  kept            = true) const;
 
     /**
      * The diagonal of the simplified Jacobian dR/dV at @p velocities by
@@ -260,7 +265,8 @@ namespace grainmpm
     apply_projection(VectorType                 &v,
                      const bool                  simplified,
                      std::vector<unsigned char> *node_in_contact,
-                     ConstraintImpulses<dim>    *impulses = nullptr) const;
+                     ConstraintImpulses<dim>    *impulses = nullptr,
+                     const bool                  kept     = true) const;
 
     /**
      * The internal forces f_s (eqs. 12-13) at the theta velocities in
@@ -323,6 +329,7 @@ namespace grainmpm
 
     /** The frozen contact and wall status. */
     ContactStatus<dim> status;
+
     /** The hysteresis band of the status decisions. */
     double status_band = 0.;
 
