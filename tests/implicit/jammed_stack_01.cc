@@ -83,12 +83,11 @@ main(int argc, char **argv)
                                             "  set CFL number = 7.5\n"},
         {"implicit-100", "  set Time step = 1.0647e-2\n"}})
     {
-      const auto energy =
-        run_case(name,
-                 stack_case("  set Scheme = implicit theta\n"
-                            "  set Theta = 0.5\n" +
-                            setting));
-      const double work   = energy.at("boundary_work").back();
+      const auto   energy   = run_case(name,
+                                   stack_case("  set Scheme = implicit theta\n"
+                                                  "  set Theta = 0.5\n" +
+                                              setting));
+      const double work     = energy.at("boundary_work").back();
       double       rejected = 0.;
       for (const double r : energy.at("rejected_steps"))
         rejected += r;
@@ -98,7 +97,8 @@ main(int argc, char **argv)
       deallog << name << ": constraint work not negative: "
               << (energy.at("friction_work").back() >= 0. ? "yes" : "no")
               << std::endl;
-      deallog << name << ": no rejected step: "
-              << (rejected == 0. ? "yes" : "no") << std::endl;
+      deallog << name
+              << ": no rejected step: " << (rejected == 0. ? "yes" : "no")
+              << std::endl;
     }
 }
