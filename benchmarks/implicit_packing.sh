@@ -9,8 +9,8 @@
 # points), frictionless and with Coulomb friction 0.3. Runs the explicit
 # leapfrog (USL, the shipped prm/slow_compression_explicit.prm) at CFL 0.25
 # and, as the reference, at CFL 0.125, and the implicit theta = 1/2 scheme
-# (the shipped case: AMG preconditioner, at most two contact status
-# updates per step) at FACTORS times the explicit CFL 0.25 step. Prints per
+# (the shipped case: AMG preconditioner, the contact status updated after
+# every Newton iteration) at FACTORS times the explicit CFL 0.25 step. Prints per
 # run: wall time, steps, rejected steps, Newton iterations per step, GMRES
 # iterations per Newton iteration, contact status changes per step, and the
 # force the disks put on the platen (walls.csv) averaged over the whole run

@@ -515,8 +515,8 @@ namespace grainmpm
     // Re-evaluate the contact status after every iteration: a primal-dual
     // active set, whose converged status is consistent with the converged
     // velocities (no constraint pulls, no free slot passes its bound).
-    // After Maximum contact status changes discrete changes it may only
-    // release constraints, so that a status that would cycle settles.
+    // After Maximum contact status changes discrete changes no constraint
+    // is added any more, so that a status that would cycle settles.
     const NonlinearProblem::Change change = problem.update_linearization(
       x, statistics.status_changes >= nonlinear.max_status_changes);
     if (change == NonlinearProblem::Change::discrete)

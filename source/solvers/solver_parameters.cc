@@ -115,9 +115,9 @@ namespace grainmpm
       "primal-dual active set): a constraint whose reaction would pull is "
       "released, a free field that would pass the approach its gap allows "
       "is caught. A contact that has changed twice in a step may after "
-      "that only be released or slip; after this many changes of the "
+      "that only be released or stick; after this many changes of the "
       "whole status in one step, every contact may only be released or "
-      "slip, so that a status that would cycle settles. Dimensionless.",
+      "stick, so that a status that would cycle settles. Dimensionless.",
       Patterns::Integer(0, 100));
     prm.add_parameter(
       "Contact status tolerance",

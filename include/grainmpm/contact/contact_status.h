@@ -57,10 +57,10 @@ namespace grainmpm
      * status frozen before in this step, the decisions have the
      * hysteresis of ContactLaw::classify() against the states frozen
      * before: a state changes only when the velocities cross its threshold
-     * by more than @p band. Without @p catches (and with a status frozen
-     * before) the decisions may only release constraints: a free slot or
-     * wall entry stays free, a constrained one is released or keeps its
-     * state and slip direction, so that repeated decisions end.
+     * by more than @p band. Decisions after the first in a step are
+     * settled (settle()): an entry that has changed twice, or every entry
+     * without @p catches, may only be released or stick, so that repeated
+     * decisions end.
      */
     void
     freeze(const GrainContact<dim>     &contact,
@@ -160,8 +160,8 @@ namespace grainmpm
 
   private:
     /**
-     * Changes of state an entry may make in a step before it may only
-     * relax (settle()).
+     * Changes of state an entry may make in a step before it is settled
+     * (settle()).
      */
     static constexpr unsigned char max_flips = 2;
 

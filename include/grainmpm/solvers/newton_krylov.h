@@ -47,9 +47,9 @@ namespace grainmpm
     residual(const VectorType &x, VectorType &r) = 0;
 
     /**
-     * Freeze the linearisation state at @p x. With @p monotone the state
-     * may only shrink (constraints are released, none is added), so that
-     * repeated updates end.
+     * Freeze the linearisation state at @p x. With @p monotone no
+     * constraint is added (constraints may be released or tightened in
+     * kind, e.g. from slip to stick), so that repeated updates end.
      */
     virtual Change
     update_linearization(const VectorType &x, const bool monotone) = 0;
