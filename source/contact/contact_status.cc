@@ -205,10 +205,9 @@ namespace grainmpm
                             const VectorType            &normals,
                             VectorType                  &velocities,
                             std::vector<unsigned char>  *node_in_contact,
-                            ConstraintImpulses<dim>     *impulses,
-                            const bool                   kept) const
+                            ConstraintImpulses<dim>     *impulses) const
   {
-    return apply_map({true, false, true, kept},
+    return apply_map({true, false, true},
                      contact,
                      layout,
                      masses,
@@ -228,7 +227,7 @@ namespace grainmpm
                                        const VectorType            &normals,
                                        VectorType &velocities) const
   {
-    return apply_map({true, true, true, true},
+    return apply_map({true, true, true},
                      contact,
                      layout,
                      masses,
@@ -249,7 +248,7 @@ namespace grainmpm
     const VectorType            &normals,
     VectorType                  &differences) const
   {
-    apply_map({false, true, true, false},
+    apply_map({false, true, true},
               contact,
               layout,
               masses,
@@ -270,7 +269,7 @@ namespace grainmpm
     const VectorType            &normals,
     VectorType                  &velocities) const
   {
-    apply_map({false, false, false, false},
+    apply_map({false, false, false},
               contact,
               layout,
               masses,
@@ -324,7 +323,7 @@ namespace grainmpm
         if (impulses != nullptr)
           before = fields.velocities;
         ContactNode<dim> view = fields.view();
-        if (map.affine && map.kept && keep_allowed_approach)
+        if (map.affine && keep_allowed_approach)
           view.allowed = slot_kept.data() + begin;
         ContactLaw<dim>::project_node_frozen(view,
                                              slot_state.data() + begin,
@@ -346,16 +345,16 @@ namespace grainmpm
           const unsigned int   face     = wall_faces[w];
           Tensor<1, dim>       velocity = get_slot_vector<dim>(velocities, s);
           const Tensor<1, dim> before   = velocity;
-          ContactLaw<dim>::apply_state(
-            wall_state[w],
-            ContactLaw<dim>::face_normal(face),
-            map.friction ?
-              ContactLaw<dim>::wall_friction(grid.boundary_condition(face)) :
-              0.,
-            wall_slip_directions[w],
-            Tensor<1, dim>(),
-            velocity,
-            map.affine && map.kept ? wall_kept[w] : 0.);
+          ContactLaw<dim>::apply_state(wall_state[w],
+                                       ContactLaw<dim>::face_normal(face),
+                                       map.friction ?
+                                         ContactLaw<dim>::wall_friction(
+                                           grid.boundary_condition(face)) :
+                                         0.,
+                                       wall_slip_directions[w],
+                                       Tensor<1, dim>(),
+                                       velocity,
+                                       map.affine ? wall_kept[w] : 0.);
           set_slot_vector<dim>(velocity, velocities, s);
           if (impulses != nullptr)
             impulses->add_wall(face, masses.local_element(s), before, velocity);

@@ -196,11 +196,10 @@ namespace grainmpm
   ThetaResidual<dim>::project(const VectorType           &velocities,
                               VectorType                 &projected,
                               std::vector<unsigned char> *node_in_contact,
-                              ConstraintImpulses<dim>    *impulses,
-                              const bool                  kept) const
+                              ConstraintImpulses<dim>    *impulses) const
   {
     copy_slot_vector(velocities, projected);
-    return apply_projection(projected, false, node_in_contact, impulses, kept);
+    return apply_projection(projected, false, node_in_contact, impulses);
   }
 
 
@@ -211,8 +210,7 @@ namespace grainmpm
     VectorType                 &v,
     const bool                  simplified,
     std::vector<unsigned char> *node_in_contact,
-    ConstraintImpulses<dim>    *impulses,
-    const bool                  kept) const
+    ConstraintImpulses<dim>    *impulses) const
   {
     // v -> (1 - theta) v^n + theta v, project, and back. The map is affine
     // (its linear part, on differences of velocities, is
@@ -231,14 +229,8 @@ namespace grainmpm
     const unsigned int n_active =
       simplified ?
         status.apply_simplified(contact, *layout, *masses, *normals, v) :
-        status.apply(contact,
-                     *layout,
-                     *masses,
-                     *normals,
-                     v,
-                     node_in_contact,
-                     impulses,
-                     kept);
+        status.apply(
+          contact, *layout, *masses, *normals, v, node_in_contact, impulses);
     if (impulses != nullptr)
       impulses->scale = 1.;
     for (unsigned int k = 0; k < n; ++k)

@@ -79,9 +79,8 @@ namespace grainmpm
      * fields), then the walls. Flags the nodes where contact is active in
      * @p node_in_contact (if given) and returns their number. With
      * @p impulses, records the impulses of contact and walls. With
-     * @p kept (and #keep_allowed_approach) constrained slots keep the
-     * approach the gap allows them; without, they lose their whole
-     * approach.
+     * #keep_allowed_approach constrained slots keep the approach the gap
+     * allows them.
      */
     unsigned int
     apply(const GrainContact<dim>     &contact,
@@ -90,8 +89,7 @@ namespace grainmpm
           const VectorType            &normals,
           VectorType                  &velocities,
           std::vector<unsigned char>  *node_in_contact = nullptr,
-          ConstraintImpulses<dim>     *impulses        = nullptr,
-          const bool                   kept            = true) const;
+          ConstraintImpulses<dim>     *impulses        = nullptr) const;
 
     /**
      * apply() with v_ref the value frozen with the status (no shift): the
@@ -189,15 +187,13 @@ namespace grainmpm
     /**
      * Which map apply_map() applies: the affine one or its linear part
      * (v_ref zero where it is frozen, no kept approach), v_ref frozen or
-     * from the velocities, with or without friction, with or without the
-     * kept approaches (affine maps only).
+     * from the velocities, with or without friction.
      */
     struct Map
     {
       bool affine;
       bool frozen_reference;
       bool friction;
-      bool kept;
     };
 
     /** The frozen status applied as @p map says (see apply()). */

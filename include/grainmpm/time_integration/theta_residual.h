@@ -208,16 +208,13 @@ namespace grainmpm
      * velocities) with the frozen status: the projection acts on the theta
      * velocity. Returns the number of nodes where contact is active. With
      * @p impulses, adds the impulses the projection gives the end
-     * velocities. With @p kept the constrained slots keep the approach the
-     * gap allows (the map of the residual); without, they lose their whole
-     * approach (ImplicitTheta's end velocity).
+     * velocities.
      */
     unsigned int
     project(const VectorType           &velocities,
             VectorType                 &projected,
             std::vector<unsigned char> *node_in_contact = nullptr,
-            ConstraintImpulses<dim>    *impulses        = nullptr,
-            const bool                  kept            = true) const;
+            ConstraintImpulses<dim>    *impulses        = nullptr) const;
 
     /**
      * The diagonal of the simplified Jacobian dR/dV at @p velocities by
@@ -265,8 +262,7 @@ namespace grainmpm
     apply_projection(VectorType                 &v,
                      const bool                  simplified,
                      std::vector<unsigned char> *node_in_contact,
-                     ConstraintImpulses<dim>    *impulses = nullptr,
-                     const bool                  kept     = true) const;
+                     ConstraintImpulses<dim>    *impulses = nullptr) const;
 
     /**
      * The internal forces f_s (eqs. 12-13) at the theta velocities in
