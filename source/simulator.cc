@@ -158,6 +158,13 @@ namespace grainmpm
                                                           grid,
                                                           grains,
                                                           materials);
+      if (implicit && parameters.time_stepping.adaptive_time_stepping &&
+          parameters.time_stepping.explicit_fallback)
+        fallback = std::make_unique<ExplicitFallback<dim>>(parameters,
+                                                           grid,
+                                                           grains,
+                                                           materials);
+      last_stepper         = stepper.get();
       time_step_controller = std::make_unique<TimeStepController>(
         parameters.time_stepping,
         parameters.nonlinear_solver.max_iterations,
@@ -252,67 +259,6 @@ namespace grainmpm
 
 
   template <int dim>
-  StepStatistics
-  Simulator<dim>::advance_one_step(DiscreteTime &time)
-  {
-    unsigned int rejected = 0;
-    for (;;)
-      {
-        StepStatistics statistics;
-        {
-          TimerOutput::Scope scope(timer,
-                                   implicit ? "implicit step" :
-                                              "explicit step");
-          statistics = stepper->advance(particle_handler,
-                                        time.get_current_time(),
-                                        time.get_next_step_size());
-        }
-        summary.add_attempt(statistics);
-        if (statistics.solver.converged)
-          {
-            statistics.solver.rejected = rejected;
-            time_step_controller->accept(time.get_next_step_size(),
-                                         statistics.solver.newton_iterations);
-            return statistics;
-          }
-
-        // Rejected: the particles are untouched; halve dt and retry.
-        ++rejected;
-        const double failed_step = time.get_next_step_size();
-        pcout << "  step " << step_offset + time.get_step_number() + 1
-              << " at t = " << time.get_current_time()
-              << " rejected with dt = " << failed_step << ": "
-              << statistics.solver.failure << std::endl;
-        if (!time_step_controller->reject(failed_step))
-          {
-            write_output(step_offset + time.get_step_number(),
-                         time.get_current_time(),
-                         time.get_previous_step_size(),
-                         schedule.extra_output_written());
-            const bool adaptive =
-              parameters.time_stepping.adaptive_time_stepping;
-            std::ostringstream message;
-            message << "the implicit step from t = " << time.get_current_time()
-                    << " failed with dt = " << failed_step << " ("
-                    << statistics.solver.failure << ") and "
-                    << (adaptive ?
-                          "halving it would go below the minimum time step " +
-                            std::to_string(
-                              time_step_controller->get_minimum_step()) :
-                          std::string("adaptive time stepping is off"))
-                    << ". Lower Time stepping/CFL number or Time step, or "
-                       "raise Nonlinear solver/Maximum Newton iterations.";
-            throw InputError(adaptive ? "Time stepping/Minimum time step" :
-                                        "Time stepping/Adaptive time stepping",
-                             message.str());
-          }
-        time.set_desired_next_step_size(time_step_controller->retry_step());
-      }
-  }
-
-
-
-  template <int dim>
   void
   Simulator<dim>::record_step(const unsigned int    step,
                               const DiscreteTime   &time,
@@ -331,7 +277,7 @@ namespace grainmpm
                               time.get_current_time(),
                               time.get_previous_step_size(),
                               statistics,
-                              stepper->get_impulses(),
+                              last_stepper->get_impulses(),
                               current,
                               summary.get_ledger(),
                               summary.get_initial_energies());
@@ -356,7 +302,8 @@ namespace grainmpm
     TimerOutput::Scope scope(timer, "output");
     last_output_step = step;
     last_output_time = time;
-    postprocessor->write_output(step, time, index, particle_handler, *stepper);
+    postprocessor->write_output(
+      step, time, index, particle_handler, *last_stepper);
 
     // The progress line; the wall time and the estimate of the time to
     // the end (from the pace since the loop started) are not in test mode.

@@ -12,6 +12,7 @@
 #include <grainmpm/postprocess/output_schedule.h>
 #include <grainmpm/postprocess/postprocessor.h>
 #include <grainmpm/postprocess/run_summary.h>
+#include <grainmpm/time_integration/explicit_fallback.h>
 #include <grainmpm/time_integration/time_integrator.h>
 #include <grainmpm/time_integration/time_step_controller.h>
 
@@ -110,6 +111,13 @@ namespace grainmpm
     advance_one_step(DiscreteTime &time);
 
     /**
+     * Advance the step of @p time that the implicit solve could not take,
+     * after @p rejected attempts, by explicit sub-steps (ExplicitFallback).
+     */
+    StepStatistics
+    advance_explicitly(const DiscreteTime &time, const unsigned int rejected);
+
+    /**
      * The energies after step @p step (the time of @p time) and the
      * histories; @p statistics of the step into the run summary.
      */
@@ -186,11 +194,15 @@ namespace grainmpm
     std::vector<std::unique_ptr<ConstitutiveModel<dim>>> materials;
     std::vector<GrainInfo<dim>>                          grains;
     std::unique_ptr<TimeIntegrator<dim>>                 stepper;
-    std::unique_ptr<TimeStepController>                  time_step_controller;
-    OutputSchedule                                       schedule;
-    std::unique_ptr<CheckpointManager<dim>>              checkpoints;
-    std::unique_ptr<Postprocessor<dim>>                  postprocessor;
-    RunSummary<dim>                                      summary;
+    /** Implicit runs with `Explicit fallback`: the explicit sub-steps. */
+    std::unique_ptr<ExplicitFallback<dim>> fallback;
+    /** The integrator of the last step: its grid and impulses are output. */
+    const TimeIntegrator<dim>              *last_stepper = nullptr;
+    std::unique_ptr<TimeStepController>     time_step_controller;
+    OutputSchedule                          schedule;
+    std::unique_ptr<CheckpointManager<dim>> checkpoints;
+    std::unique_ptr<Postprocessor<dim>>     postprocessor;
+    RunSummary<dim>                         summary;
     /**
      * The timing table, printed when the run ends. Made after the members
      * whose construction can fail, and silenced when anything fails before

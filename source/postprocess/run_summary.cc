@@ -106,6 +106,9 @@ namespace grainmpm
         newton_iterations += statistics.solver.newton_iterations;
         linear_iterations += statistics.solver.linear_iterations;
         status_changes += statistics.solver.status_changes;
+        if (statistics.solver.explicit_substeps > 0)
+          ++fallback_steps;
+        explicit_substeps += statistics.solver.explicit_substeps;
         max_newton_iterations =
           std::max(max_newton_iterations, statistics.solver.newton_iterations);
       }
@@ -218,6 +221,9 @@ namespace grainmpm
         if (rejected > 0)
           out << "  smallest time step tried:               "
               << smallest_step_tried << "\n";
+        if (fallback_steps > 0)
+          out << "  steps advanced by explicit sub-steps:   " << fallback_steps
+              << " (" << explicit_substeps << " sub-steps)\n";
       }
     // Momentum relative to the initial momentum scale sum_p m_p |v_p|; walls,
     // rigid grains, gravity and removed particles change it legitimately.
@@ -297,6 +303,8 @@ namespace grainmpm
       {"contact_status_changes", static_cast<double>(status_changes), "1"},
       {"rejected_steps", static_cast<double>(rejected), "1"},
       {"smallest_time_step_tried", smallest_step_tried, "T"},
+      {"explicit_fallback_steps", static_cast<double>(fallback_steps), "1"},
+      {"explicit_substeps", static_cast<double>(explicit_substeps), "1"},
       {"momentum_change", momentum_change, impulse},
       {"momentum_scale", initial_momentum_scale, impulse}};
     if (initial_momentum_scale > 0.)

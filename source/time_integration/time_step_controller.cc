@@ -95,6 +95,16 @@ namespace grainmpm
 
 
   void
+  TimeStepController::resume_after_fallback(const double failed_step)
+  {
+    step_limit    = failed_step;
+    easy_steps    = 0;
+    smallest_step = std::min(smallest_step, failed_step);
+  }
+
+
+
+  void
   TimeStepController::accept(const double       step,
                              const unsigned int newton_iterations)
   {

@@ -56,6 +56,18 @@ namespace grainmpm
       "Dimensionless.",
       Patterns::Integer(1));
     prm.add_parameter(
+      "Explicit fallback",
+      explicit_fallback,
+      "Implicit scheme with Adaptive time stepping: a step whose Newton "
+      "solve still fails when halving it would take it below the stable "
+      "step of the explicit leapfrog, h / (c + max |v_p|), or below "
+      "Minimum time step, is advanced by explicit leapfrog sub-steps "
+      "(Stress update = USL, lumped mass, a quarter of the stable step "
+      "each, the same contact law) over the interval of the failed step, "
+      "and the implicit steps resume from there, grown back as after a "
+      "cut step. The implicit run then gets through every event the "
+      "explicit one gets through. If false, such a step stops the run.");
+    prm.add_parameter(
       "Stress update",
       stress_update_text,
       "Where in the explicit step the stress is updated: 'USF' (update "

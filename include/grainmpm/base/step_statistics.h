@@ -56,6 +56,11 @@ namespace grainmpm
     unsigned int status_changes = 0;
     /** Attempts rejected before this step was accepted. */
     unsigned int rejected = 0;
+    /**
+     * Explicit sub-steps that advanced this step after its implicit solve
+     * failed (`Time stepping/Explicit fallback`; 0 otherwise).
+     */
+    unsigned int explicit_substeps = 0;
   };
 
 

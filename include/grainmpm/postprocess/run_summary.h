@@ -151,6 +151,7 @@ namespace grainmpm
         &largest_kinetic_elastic &initial_momentum_scale;
       archive &newton_iterations &linear_iterations &residual_evaluations
         &status_changes &max_newton_iterations &rejected;
+      archive &fallback_steps                  &explicit_substeps;
     }
 
   private:
@@ -191,6 +192,9 @@ namespace grainmpm
     unsigned long status_changes        = 0;
     unsigned int  max_newton_iterations = 0;
     unsigned int  rejected              = 0;
+    /** Steps advanced by the explicit fallback, and its sub-steps. */
+    unsigned int fallback_steps    = 0;
+    unsigned int explicit_substeps = 0;
   };
 } // namespace grainmpm
 

@@ -140,7 +140,7 @@ namespace grainmpm
     }
 
     /** The constraint impulses of the last step (this rank's nodes). */
-    const ConstraintImpulses<dim> &
+    virtual const ConstraintImpulses<dim> &
     get_impulses() const
     {
       return get_grid_state().impulses;

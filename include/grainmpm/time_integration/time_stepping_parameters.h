@@ -64,7 +64,12 @@ namespace grainmpm
     /** Cut dt on a failed implicit step and grow it back afterwards. */
     bool adaptive_time_stepping = true;
     /** Consecutive easy steps before dt is doubled back. */
-    unsigned int   steps_before_growth  = 2;
+    unsigned int steps_before_growth = 2;
+    /**
+     * Advance a step that the implicit solve cannot take at the explicit
+     * stable step by explicit leapfrog sub-steps.
+     */
+    bool           explicit_fallback    = true;
     std::string    stress_update_text   = "USF";
     StressUpdate   stress_update        = StressUpdate::usf;
     double         end_time             = 1.;
