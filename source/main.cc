@@ -77,6 +77,7 @@ namespace
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
     add_random_packing(parameters);
+    parameters.apply_mass_scaling();
 
     // The checks of a run before its first step: the grains on the grid
     // (overlaps, grains outside the grid, function expressions and their

@@ -224,6 +224,12 @@ namespace grainmpm
              << grains.size() << " grains, "
              << particle_handler.n_global_particles() << " material points"
              << std::endl;
+    if (parameters.time_stepping.mass_scaling != 1.)
+      progress << "mass scaling " << parameters.time_stepping.mass_scaling
+               << ": densities multiplied and gravity divided by it; the "
+                  "masses, momenta and kinetic energies written are those "
+                  "of the scaled densities"
+               << std::endl;
   }
 
 
@@ -280,7 +286,8 @@ namespace grainmpm
                               last_stepper->get_impulses(),
                               current,
                               summary.get_ledger(),
-                              summary.get_initial_energies());
+                              summary.get_initial_energies(),
+                              particle_handler);
     summary.add_energies(current);
     if (!std::isfinite(current.total()))
       throw InputError("Time stepping",
@@ -512,6 +519,7 @@ namespace grainmpm
     Parameters<dim>  parameters;
     parameters.parse(filename, prm);
     add_random_packing(parameters);
+    parameters.apply_mass_scaling();
     Simulator<dim> simulator(parameters, prm, filename, communicator, quiet);
     simulator.run();
   }

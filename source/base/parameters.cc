@@ -192,6 +192,21 @@ namespace grainmpm
 
   template <int dim>
   void
+  Parameters<dim>::apply_mass_scaling()
+  {
+    if (masses_scaled)
+      return;
+    const double alpha = time_stepping.mass_scaling;
+    for (auto &material : materials)
+      material.density *= alpha;
+    physics.gravity /= alpha;
+    masses_scaled = true;
+  }
+
+
+
+  template <int dim>
+  void
   Parameters<dim>::check_grain(GrainParameters<dim> &grain) const
   {
     grain.check(grain.source + "/");

@@ -51,6 +51,7 @@ namespace grainmpm
                                              grid,
                                              grains,
                                              centres,
+                                             particle_handler,
                                              communicator,
                                              lengths.walls);
     if (parameters.output.write_contacts)
@@ -105,16 +106,18 @@ namespace grainmpm
 
   template <int dim>
   void
-  Postprocessor<dim>::write_step(const unsigned int             step,
-                                 const double                   time,
-                                 const double                   dt,
-                                 const StepStatistics          &statistics,
-                                 const ConstraintImpulses<dim> &impulses,
-                                 const EnergySummary<dim>      &energies,
-                                 const EnergyLedger            &ledger,
-                                 const EnergySummary<dim> &initial_energies)
+  Postprocessor<dim>::write_step(
+    const unsigned int                     step,
+    const double                           time,
+    const double                           dt,
+    const StepStatistics                  &statistics,
+    const ConstraintImpulses<dim>         &impulses,
+    const EnergySummary<dim>              &energies,
+    const EnergyLedger                    &ledger,
+    const EnergySummary<dim>              &initial_energies,
+    const Particles::ParticleHandler<dim> &particle_handler)
   {
-    reaction_history->write_row(step, time, dt, impulses);
+    reaction_history->write_row(step, time, dt, impulses, particle_handler);
     if (contact_history)
       contact_history->add_step(impulses);
     energy_history->write_row(

@@ -34,6 +34,22 @@ namespace grainmpm
       "damp the highest frequencies, 1 is backward Euler. Dimensionless.",
       Patterns::Double(0.5, 1.));
     prm.add_parameter(
+      "Mass scaling",
+      mass_scaling,
+      "Mass (density) scaling for slow, quasi-static loading: the density "
+      "of every material is multiplied by this factor alpha and gravity is "
+      "divided by it, so that weights and stresses at equilibrium are "
+      "unchanged while the wave speed falls by sqrt(alpha) and the CFL "
+      "step grows by sqrt(alpha). The inertia forces grow by alpha: the "
+      "results stay those of the physical material only while the loading "
+      "stays quasi-static with the scaled density, i.e. while the inertial "
+      "number I = (strain rate) d / sqrt(P / (alpha rho)) written in "
+      "walls.csv for each moving rigid grain stays below about 1e-3 "
+      "(doc/theory.md). The masses, momenta and kinetic energies written "
+      "are those of the scaled densities. 1 means no scaling. "
+      "Dimensionless.",
+      Patterns::Double(1.));
+    prm.add_parameter(
       "Minimum time step",
       minimum_time_step,
       "Implicit scheme: a step whose Newton solve fails is retried with "

@@ -102,6 +102,19 @@ namespace grainmpm
     check();
 
     /**
+     * Mass scaling (`Time stepping/Mass scaling` alpha): multiply the
+     * density of every material by alpha and divide gravity by it, so that
+     * inertia is alpha times the physical one while weights stay true.
+     * Called once, by run(), after the grains are complete; a second call
+     * changes nothing.
+     */
+    void
+    apply_mass_scaling();
+
+    /** Whether apply_mass_scaling() has scaled the densities. */
+    bool masses_scaled = false;
+
+    /**
      * Check @p grain (GrainParameters::check()) and what involves the other
      * subsections: its material exists (this sets its material index) and
      * it lies inside the background grid.

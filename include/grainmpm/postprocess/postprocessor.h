@@ -86,14 +86,15 @@ namespace grainmpm
      * of the step into the sums of contacts.csv.
      */
     void
-    write_step(const unsigned int             step,
-               const double                   time,
-               const double                   dt,
-               const StepStatistics          &statistics,
-               const ConstraintImpulses<dim> &impulses,
-               const EnergySummary<dim>      &energies,
-               const EnergyLedger            &ledger,
-               const EnergySummary<dim>      &initial_energies);
+    write_step(const unsigned int                     step,
+               const double                           time,
+               const double                           dt,
+               const StepStatistics                  &statistics,
+               const ConstraintImpulses<dim>         &impulses,
+               const EnergySummary<dim>              &energies,
+               const EnergyLedger                    &ledger,
+               const EnergySummary<dim>              &initial_energies,
+               const Particles::ParticleHandler<dim> &particle_handler);
 
     /**
      * The output at @p time after step @p step, number @p index of the

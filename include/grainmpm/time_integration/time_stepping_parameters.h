@@ -57,6 +57,11 @@ namespace grainmpm
   {
     std::string        scheme_text = "explicit leapfrog";
     TimeSteppingScheme scheme      = TimeSteppingScheme::explicit_leapfrog;
+    /**
+     * Factor alpha >= 1 on the densities (inertia), with gravity divided
+     * by it (Parameters::apply_mass_scaling()).
+     */
+    double mass_scaling = 1.;
     /** Centring parameter of the implicit scheme, in [1/2, 1]. */
     double theta = 0.5;
     /** Smallest step the implicit failure policy may cut to (0: auto). */
