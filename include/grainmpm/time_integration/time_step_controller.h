@@ -54,16 +54,6 @@ namespace grainmpm
     reject(const double failed_step);
 
     /**
-     * The stable step of the explicit leapfrog, h_min / (c_max + |v|_max),
-     * for particles moving at most at @p max_speed.
-     */
-    double
-    explicit_stable_step(const double max_speed) const
-    {
-      return minimum_cell_size / (wave_speed + max_speed);
-    }
-
-    /**
      * A step of size @p failed_step was advanced by explicit sub-steps
      * after the implicit solve failed on it: the implicit steps resume
      * with that step and grow back as after a cut.
