@@ -273,6 +273,12 @@ namespace grainmpm
     for (unsigned int k = 0;; ++k)
       {
         statistics.residual_norm = state.norm / (state.root_n * velocity_scale);
+        if (nonlinear.motion_tolerance > 0.)
+          state.target = std::max(std::min(state.base_target,
+                                           nonlinear.motion_tolerance *
+                                             state.root_n * x.linfty_norm()),
+                                  nonlinear.absolute_tolerance *
+                                    velocity_scale * state.root_n);
         if (state.norm <= state.target)
           return finish(true, "");
         if (at_iteration_limit(k, state))
@@ -317,9 +323,10 @@ namespace grainmpm
     state.scale  = (nonlinear.residual_scale == ResidualScale::physical) ?
                      state.root_n * velocity_scale :
                      state.norm;
-    state.target =
+    state.base_target =
       std::max(nonlinear.tolerance * state.scale,
                nonlinear.absolute_tolerance * velocity_scale * state.root_n);
+    state.target = state.base_target;
 
     if (linear.probed_jacobi && state.norm > state.target)
       problem.jacobian_diagonal(

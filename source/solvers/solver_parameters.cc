@@ -48,6 +48,19 @@ namespace grainmpm
       "value times Velocity scale, so that steps that start at equilibrium "
       "converge. Dimensionless.",
       Patterns::Double(0., 1.));
+    prm.add_parameter(
+      "Motion tolerance",
+      motion_tolerance,
+      "Newton also needs the root-mean-square of R to be below this value "
+      "times the largest speed of the iterate (any slot, rigid grains "
+      "included), so that the velocity error is small against the motion "
+      "even where the initial residual is large against it: with contact "
+      "at steps many times the explicit one under slow loading, a relative "
+      "Tolerance of 1e-6 of the initial residual left errors of 10 % of "
+      "the platen speed, which created energy (doc/theory.md section 10). "
+      "Absolute tolerance stays the floor. Zero turns the test off. "
+      "Dimensionless.",
+      Patterns::Double(0., 1.));
     prm.add_parameter("Maximum Newton iterations",
                       max_iterations,
                       "Newton iterations per step; a step that has not "

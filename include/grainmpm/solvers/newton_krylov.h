@@ -190,8 +190,13 @@ namespace grainmpm
       double root_n = 0.;
       /** F_scale of the stopping test. */
       double scale = 0.;
-      /** ||R|| at which Newton stops. */
-      double target = 0.;
+      /**
+       * ||R|| at which Newton stops: from the tolerance and the residual
+       * scale (base_target), lowered by the motion tolerance at each
+       * iterate.
+       */
+      double base_target = 0.;
+      double target      = 0.;
       /** ||R|| at the current and at the previous iterate. */
       double norm          = 0.;
       double previous_norm = 0.;

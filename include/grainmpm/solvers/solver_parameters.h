@@ -52,9 +52,14 @@ namespace grainmpm
     ResidualScale residual_scale      = ResidualScale::initial_residual;
     double        velocity_scale      = 0.;
     double        absolute_tolerance  = 1e-12;
-    unsigned int  max_iterations      = 20;
-    std::string   forcing_text        = "Eisenstat-Walker";
-    ForcingTerm   forcing             = ForcingTerm::eisenstat_walker;
+    /**
+     * Newton also needs RMS(R) below this times the largest speed of the
+     * iterate (0: off).
+     */
+    double       motion_tolerance = 1e-4;
+    unsigned int max_iterations   = 20;
+    std::string  forcing_text     = "Eisenstat-Walker";
+    ForcingTerm  forcing          = ForcingTerm::eisenstat_walker;
     /** Set by check(): forcing is Eisenstat-Walker. */
     bool             eisenstat_walker     = true;
     double           forcing_constant     = 1e-2;
