@@ -74,20 +74,6 @@ namespace grainmpm
       archive &extents;
     }
 
-    /** The mean equivalent diameter d of the deformable grains. */
-    double
-    get_diameter() const
-    {
-      return diameter;
-    }
-
-    /** The mean density rho of the deformable grains. */
-    double
-    get_density() const
-    {
-      return density;
-    }
-
   private:
     const std::vector<GrainInfo<dim>> &grains;
     const std::vector<unsigned int>    rigid_grains;
