@@ -5,17 +5,19 @@
 // (a) a disk in free fall under gravity: kinetic energy gained = gravity
 //     potential lost, so the balance residual stays at round-off;
 // (b) the frictionless elastic two-disk collision (prm/two_disks_implicit
-//     .prm): no friction work, the transfers lose (2.2 % of E0 with the
-//     default blended mass matrix, 17.6 % with linear shape functions and
-//     the lumped mass), and the balance residual at the end is below 4 % of
-//     E0 (-2.5 %: mostly the contact pass on v^n, which removes the
-//     approach at t^n and is not a projection orthogonal in the blended
-//     mass; with the lumped mass it was -0.9 %);
+//     .prm): the constraint work is that of the reactions on the approach
+//     the gap check allows where a gap closes within the step (lambda a,
+//     doc/theory.md section 14): never negative in a step, and below 3 % of
+//     E0 (1.9 %); the transfers lose (5.8 % of E0); the balance residual at
+//     the end is below 8 % of E0 (-6.3 %: mostly the contact pass on v^n,
+//     which removes the approach at t^n: without that pass it is +0.2 %).
+//     Without the gap check: no constraint work, transfers -2.2 %, balance
+//     -2.5 %;
 // (c) the same with Coulomb friction mu = 0.3, off-centre: friction work
-//     is positive (2.5e-3 E0); one step at separation gives back 2.5 % of
-//     it, where the frozen slip direction of a sliding slot no longer
-//     matches its final relative velocity, so steps may give back at most
-//     5 %; the balance at the end below 4 % (-3.3 %);
+//     is positive (3.3e-2 E0); no step gives back more than 5 % of it
+//     (a step at separation may give a little back, where the frozen slip
+//     direction of a sliding slot no longer matches its final relative
+//     velocity); the balance at the end below 8 % (-5.8 %);
 // (d) an elastic-plastic disk hitting a wall: the plastic work takes most
 //     of the energy, the balance at the end below 5 % of E0.
 // Every row is checked to satisfy balance = E - E0 + plastic + friction -
@@ -148,16 +150,25 @@ end
           monotone &&
           (work[k] >= work[k - 1] - 0.05 * std::abs(work.back()) - 1e-12 * E0);
       if (friction == "0")
-        deallog << "  no friction work: "
-                << yes_no(std::abs(work.back()) < 1e-12 * E0) << std::endl;
+        {
+          double smallest_increment = 0.;
+          for (unsigned int k = 1; k < work.size(); ++k)
+            smallest_increment =
+              std::min(smallest_increment, work[k] - work[k - 1]);
+          deallog << "  constraint work never negative in a step, below 3 % "
+                     "of E0: "
+                  << yes_no(smallest_increment >= -1e-12 * E0 &&
+                            work.back() < 0.03 * E0)
+                  << std::endl;
+        }
       else
         deallog << "  friction work positive, no step gives back more than 5 "
                    "% of it: "
                 << yes_no(work.back() > 1e-4 * E0 && monotone) << std::endl;
       deallog << "  transfers lose more than 1 % of E0: "
               << yes_no(c.at("transfer_work").back() < -0.01 * E0) << std::endl;
-      deallog << "  |balance residual(end)| / E0 < 4 %: "
-              << yes_no(std::abs(c.at("balance_residual").back()) < 0.04 * E0)
+      deallog << "  |balance residual(end)| / E0 < 8 %: "
+              << yes_no(std::abs(c.at("balance_residual").back()) < 0.08 * E0)
               << std::endl;
     }
 
