@@ -90,7 +90,8 @@ for name, label in [("usl_0_half", "explicit USL, CFL 0.125"), ("usl_0_pic", "ex
     c = columns(name)
     W = c["boundary_work"][-1]
     print(f"| {label} | {c['total_energy'][-1] / W:.3f} | {W / usl['boundary_work'][-1]:.3f} | "
-          + " | ".join(f"{window(c, t) / window(usl, t):.3f}" for t in times) + " |")
+          + " | ".join(f"{window(c, t) / window(usl, t):.3f}" if abs(window(usl, t)) > 1e-9 * W
+                       else "-" for t in times) + " |")
 print("\nexplicit USL ledger: transfers, leapfrog and balance in units of W(1), "
       "the balance at t = 0.1, ..., 1 in units of W(t):\n")
 print("| friction | CFL | transfers / W | leapfrog / W | balance / W(t) at t = 0.1, 0.2, ..., 1 | largest \\|balance\\| / W(1) |")
@@ -100,7 +101,7 @@ for name, friction, cfl in [("usl_0", "0", "0.25"), ("usl_0_half", "0", "0.125")
     c = columns(name)
     W = c["boundary_work"][-1]
     balances = " ".join(f"{at(c, 'balance_residual', t) / at(c, 'boundary_work', t):+.4f}"
-                        for t in times)
+                        if at(c, 'boundary_work', t) > 0. else "-" for t in times)
     print(f"| {friction} | {cfl} | {c['transfer_work'][-1] / W:.3f} | {c['leapfrog_work'][-1] / W:.3f} "
           f"| {balances} | {max(abs(b) for b in c['balance_residual']) / W:.4f} |")
 PYTHON
