@@ -40,10 +40,13 @@ namespace grainmpm
       "from the volume its material points give the node (sum_p V_p S_ip) "
       "against the node's support, as for a flat surface; a grain that "
       "approaches its partner by less than the gap between the surfaces in "
-      "one step is left alone, one that approaches faster loses its whole "
-      "approach. 'false': every approach at a node where two grains have "
-      "mass is removed (contact about one cell early, grains rotating next "
-      "to a surface are pushed off it, and rolling grains slip).",
+      "one step is left alone; one that approaches faster is held (the "
+      "explicit scheme removes its whole approach, the implicit one lets "
+      "it close the gap and no more). 'false': the classic multi-field law, "
+      "every approach at a node where two grains have mass is removed "
+      "(contact about one cell early, grains rotating next to a surface "
+      "are pushed off it, rolling grains slip, loose packings carry load "
+      "through gaps).",
       Patterns::Bool());
     prm.leave_subsection();
   }

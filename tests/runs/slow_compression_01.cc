@@ -13,6 +13,8 @@
 //   velocity that moves the points at the constraints, and the scheme
 //   creates energy under sustained contact: E / W = 1.39, W 11 % high.
 
+#include <cstdlib>
+
 #include "../tests.h"
 
 #include "../energy_csv.h"
@@ -34,7 +36,7 @@ compress(const std::string &name,
   const auto c =
     run_case(name,
              "include " GRAINMPM_SOURCE_DIR "/prm/" + prm_file +
-               "\nsubsection Time stepping\n  set End time = 0.1\n" +
+               "\nsubsection Time stepping\n  set End time = 0.2\n" +
                (stress_update.empty() ?
                   std::string() :
                   "  set Stress update = " + stress_update + "\n") +
@@ -87,4 +89,9 @@ main(int argc, char **argv)
   deallog << "explicit USF: E / W > 1.2 (energy created): "
           << yes(usf.E > 1.2 * usf.W) << ", W more than 5 % above implicit: "
           << yes(usf.W > 1.05 * implicit.W) << std::endl;
+  if (std::getenv("GRAINMPM_VERBOSE") != nullptr)
+    for (const auto &[name, c] :
+         {std::pair{"implicit", implicit}, {"USL", usl}, {"USF", usf}})
+      deallog << name << ": W = " << c.W << ", E / W = " << c.E / c.W
+              << ", Newton per step " << c.newton_per_step << std::endl;
 }

@@ -30,7 +30,7 @@ namespace grainmpm
     std::string  model_text           = "frictionless";
     ContactModel model                = ContactModel::frictionless;
     double       friction_coefficient = 0.;
-    bool         gap_check            = false;
+    bool         gap_check            = true;
 
     void
     declare(ParameterHandler &prm);
