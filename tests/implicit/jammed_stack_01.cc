@@ -54,7 +54,7 @@ stack_case(const std::string &time_stepping)
       << "    set Material = elastic\n    set Rigid = true\n"
       << "    set Prescribed velocity = 0; -0.037\n  end\nend\n"
       << "subsection Contact\n  set Contact model = Coulomb friction\n"
-      << "  set Friction coefficient = 0.3\n  set Gap check = true\nend\n"
+      << "  set Friction coefficient = 0.3\nend\n"
       << "subsection Time stepping\n  set End time = 0.3\n"
       << time_stepping << "end\n"
       << "subsection Linear solver\n  set Preconditioner = AMG\nend\n";
