@@ -5,6 +5,7 @@
 #include <grainmpm/base/stop_signals.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
+#include <grainmpm/postprocess/history_file.h>
 #include <grainmpm/postprocess/input_record.h>
 #include <grainmpm/simulator.h>
 #include <grainmpm/time_integration/explicit_leapfrog.h>
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -138,6 +140,35 @@ namespace grainmpm
         archive >> lengths.energy >> lengths.grains >> lengths.walls >>
           lengths.contacts;
       });
+    // Resumed in another output directory: the histories start as those of
+    // the checkpoint's run up to the checkpoint.
+    const std::string resume_source = checkpoints->resume_source();
+    if (!resume_source.empty())
+      {
+        std::string error;
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          try
+            {
+              const std::string &to = parameters.output.directory;
+              copy_history_file(resume_source + "/energy.csv",
+                                to + "/energy.csv",
+                                lengths.energy);
+              copy_history_file(resume_source + "/grains.csv",
+                                to + "/grains.csv",
+                                lengths.grains);
+              copy_history_file(resume_source + "/walls.csv",
+                                to + "/walls.csv",
+                                lengths.walls);
+              copy_history_file(resume_source + "/contacts.csv",
+                                to + "/contacts.csv",
+                                lengths.contacts);
+            }
+          catch (const InputError &exception)
+            {
+              error = exception.what();
+            }
+        throw_on_all_ranks(error, communicator);
+      }
 
     {
       TimerOutput::Scope  scope(timer, "setup");
@@ -185,6 +216,11 @@ namespace grainmpm
             archive >> *this;
             postprocessor->serialize(archive, 0);
           });
+        if (!resume_source.empty())
+          postprocessor->prefix_output_records(
+            std::filesystem::relative(resume_source,
+                                      parameters.output.directory)
+              .string());
         checkpoints->finish_resume();
       }
     // The grains fill only part of the box: balance the material points.

@@ -158,6 +158,28 @@ namespace grainmpm
 
 
   template <int dim>
+  std::string
+  CheckpointManager<dim>::resume_source() const
+  {
+    if (parameters.resume_from.empty())
+      return "";
+    std::filesystem::path checkpoint(parameters.resume_from);
+    if (!checkpoint.has_filename())
+      checkpoint = checkpoint.parent_path();
+    std::filesystem::path source = checkpoint.parent_path();
+    if (source.empty())
+      source = ".";
+    std::error_code             code;
+    const std::filesystem::path a =
+      std::filesystem::weakly_canonical(source, code);
+    const std::filesystem::path b =
+      std::filesystem::weakly_canonical(directory, code);
+    return (a == b) ? std::string() : source.string();
+  }
+
+
+
+  template <int dim>
   void
   CheckpointManager<dim>::finish_resume()
   {

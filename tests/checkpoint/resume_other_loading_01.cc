@@ -19,6 +19,12 @@
 //   energy.csv: none explicit, at least one each implicit step);
 // - the two schemes agree on the platen work from the checkpoint to the
 //   end within 2 %.
+// The explicit run resumes in a copy of the first run's directory; the
+// implicit one in a new, empty directory: its histories start as copies
+// of the first run's, cut back to the checkpoint, the first run's files
+// are left as they were, and its particles.pvd names the first run's
+// particle files up to the checkpoint (as ../results-first/...) and its
+// own after it: every file it names exists.
 
 #include <grainmpm/simulator.h>
 
@@ -55,7 +61,7 @@ write_prm(const std::string &name,
                                  "")
       << "end\n"
       << "subsection Output\n  set Output directory = " << directory
-      << "\n  set Test mode = true\n  set Write particles = false\n"
+      << "\n  set Test mode = true\n  set Write particles = true\n"
       << "  set Write grid = false\n  set Output interval = 0.05\nend\n"
       << "subsection Checkpoint\n  set Steps between checkpoints = 300\n"
       << "  set Checkpoints kept = 10\n  set Resume from = " << resume
@@ -101,21 +107,29 @@ main(int argc, char **argv)
   const auto   first           = read_energy("results-first");
   const double checkpoint_time = first.at("time")[checkpoint_step];
 
+  const std::uintmax_t first_energy_size =
+    std::filesystem::file_size("results-first/energy.csv");
+  const std::uintmax_t first_pvd_size =
+    std::filesystem::file_size("results-first/particles.pvd");
+
   std::vector<double> platen_work;
   for (const std::string scheme : {"explicit", "implicit"})
     {
       const std::string directory = "results-" + scheme;
+      const std::string checkpoint =
+        "/checkpoint-" + Utilities::int_to_string(checkpoint_step, 6);
       std::filesystem::remove_all(directory);
-      std::filesystem::copy("results-first",
-                            directory,
-                            std::filesystem::copy_options::recursive);
+      if (scheme == "explicit")
+        std::filesystem::copy("results-first",
+                              directory,
+                              std::filesystem::copy_options::recursive);
       write_prm(scheme + ".prm",
                 directory,
                 scheme,
                 fast,
                 end_time,
-                directory + "/checkpoint-" +
-                  Utilities::int_to_string(checkpoint_step, 6));
+                (scheme == "explicit" ? directory : "results-first") +
+                  checkpoint);
       grainmpm::run<2>(scheme + ".prm", MPI_COMM_WORLD);
 
       const auto energy = read_energy(directory);
@@ -154,6 +168,40 @@ main(int argc, char **argv)
                     "yes" :
                     "no")
               << std::endl;
+
+      if (scheme == "implicit")
+        {
+          deallog << "implicit: the first run's energy.csv and particles.pvd "
+                  << "unchanged: "
+                  << (std::filesystem::file_size("results-first/energy.csv") ==
+                            first_energy_size &&
+                          std::filesystem::file_size(
+                            "results-first/particles.pvd") == first_pvd_size ?
+                        "yes" :
+                        "no")
+                  << std::endl;
+          // The files particles.pvd names, relative to its directory.
+          std::ifstream pvd(directory + "/particles.pvd");
+          std::string   line;
+          unsigned int  named = 0, found = 0, earlier = 0;
+          while (std::getline(pvd, line))
+            {
+              const std::size_t at = line.find("file=\"");
+              if (at == std::string::npos)
+                continue;
+              const std::size_t begin = at + 6;
+              const std::string file =
+                line.substr(begin, line.find('"', begin) - begin);
+              ++named;
+              found += std::filesystem::exists(directory + "/" + file);
+              earlier += file.rfind("../results-first/", 0) == 0;
+            }
+          deallog << "implicit: particles.pvd names " << named << " files, "
+                  << earlier << " of them the first run's; all exist: "
+                  << (found == named && named > earlier && earlier > 0 ? "yes" :
+                                                                         "no")
+                  << std::endl;
+        }
 
       const std::vector<double> &work = energy.at("boundary_work");
       platen_work.push_back(work.back() - work[checkpoint_step]);

@@ -64,6 +64,16 @@ namespace grainmpm
     }
 
     /**
+     * The output directory of the run that wrote the checkpoint this run
+     * resumes from (the directory that holds it), if that is not this
+     * run's output directory; otherwise empty. A run resumed elsewhere
+     * starts its histories from copies of that run's (cut back to the
+     * checkpoint), and its .pvd records point to that run's files.
+     */
+    std::string
+    resume_source() const;
+
+    /**
      * Replace the material points of @p particle_handler and the cells of
      * @p grid by those of the checkpoint the run resumes from, after
      * checking that it was written by a run with the @p fingerprint of this

@@ -8,10 +8,12 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace grainmpm
 {
@@ -33,8 +35,11 @@ namespace grainmpm
           throw InputError("Checkpoint/Resume from",
                            "the file '" + filename +
                              "' is missing or shorter than at the "
-                             "checkpoint: resume in the output directory of "
-                             "the run that wrote the checkpoint.");
+                             "checkpoint, so it is not the history of the run "
+                             "that wrote the checkpoint: resume in an output "
+                             "directory that holds that history, or in one "
+                             "without this file (it is then copied from the "
+                             "directory of the checkpoint).");
         std::filesystem::resize_file(filename, resume_length);
         file.open(filename, std::ios::app);
       }
@@ -44,6 +49,49 @@ namespace grainmpm
       throw InputError("Output/Output directory",
                        "cannot write the file '" + filename + "'.");
     return resume_length == 0;
+  }
+
+
+
+  /**
+   * A run resumed in another output directory than the one its checkpoint
+   * is in: start the history @p destination as the first @p length bytes
+   * of the checkpoint run's @p source, unless @p destination exists (then
+   * open_history_file() cuts it back as in the checkpoint run's own
+   * directory). Nothing to do for @p length 0 (a history the checkpoint
+   * run did not write).
+   */
+  inline void
+  copy_history_file(const std::string   &source,
+                    const std::string   &destination,
+                    const std::uintmax_t length)
+  {
+    if (length == 0 || std::filesystem::exists(destination))
+      return;
+    if (!std::filesystem::exists(source) ||
+        std::filesystem::file_size(source) < length)
+      throw InputError("Checkpoint/Resume from",
+                       "the file '" + source +
+                         "' of the run that wrote the checkpoint is missing "
+                         "or shorter than at the checkpoint, so the history "
+                         "up to it cannot be continued in '" +
+                         destination + "'.");
+    std::ifstream     in(source, std::ios::binary);
+    std::ofstream     out(destination, std::ios::binary);
+    std::vector<char> buffer(1 << 16);
+    std::uintmax_t    left = length;
+    while (in && out && left > 0)
+      {
+        const std::streamsize chunk = static_cast<std::streamsize>(
+          std::min<std::uintmax_t>(left, buffer.size()));
+        in.read(buffer.data(), chunk);
+        out.write(buffer.data(), in.gcount());
+        left -= static_cast<std::uintmax_t>(in.gcount());
+      }
+    out.close();
+    if (left > 0 || !out)
+      throw InputError("Output/Output directory",
+                       "cannot write the file '" + destination + "'.");
   }
 
 

@@ -70,6 +70,20 @@ namespace grainmpm
                    const double                               time,
                    const unsigned int                         index);
 
+    /**
+     * Prefix the file names of the .pvd records with @p prefix (a path
+     * relative to the output directory), for a run resumed in another
+     * output directory than its checkpoint's: the records up to the
+     * checkpoint then name the files of the run that wrote them.
+     */
+    void
+    prefix_records(const std::string &prefix)
+    {
+      for (auto *records : {&particle_records, &grid_records, &contact_records})
+        for (auto &record : *records)
+          record.second = prefix + "/" + record.second;
+    }
+
     /** Checkpoint the .pvd records. */
     template <class Archive>
     void

@@ -116,6 +116,13 @@ namespace grainmpm
     void
     prepare_checkpoint();
 
+    /** OutputWriter::prefix_records(). */
+    void
+    prefix_output_records(const std::string &prefix)
+    {
+      output_writer->prefix_records(prefix);
+    }
+
     /**
      * Read or write the state of the writers and histories. Called directly
      * (not through `archive & postprocessor`), so that the archive holds
