@@ -2,11 +2,18 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 # Copyright (C) 2026 by the grainmpm authors
 #
-# The loading-rate sweep: the 30 disks of prm/slow_compression_*.prm
-# compressed by the platen at RATES (V / c, c the dilatational wave speed)
-# over the same travel 0.037 (End time = 0.037 / V), frictionless and with
-# Coulomb friction 0.3 (FRICTIONS), with the contact of the case or
-# Contact/Gap check = GAP_CHECK. Per rate and friction it runs:
+# The loading-rate sweep. PACKINGS chooses the packings:
+# - loose: the 30 disks of prm/slow_compression_*.prm, compressed by the
+#   platen from the start over the travel 0.037 (End time = 0.037 / V),
+#   frictionless and with Coulomb friction 0.3 (FRICTIONS);
+# - dense: the jammed 100 disks (mu = 0.3, P/E = 1.4e-3) of
+#   prm/dense_packing_preparation.prm, resumed from its checkpoint at
+#   t = 1.4848 (DENSE_CHECKPOINT, or made first, about 6 minutes) in
+#   their own output directories, over the travel DENSE_TRAVEL (default
+#   1.11e-3, 0.3 time units at V/c = 1e-4). Friction is the case's.
+# Rates are RATES (V / c, c the dilatational wave speed), contact that of
+# the case or Contact/Gap check = GAP_CHECK. Per packing, rate and
+# friction it runs:
 # - the explicit leapfrog (USL) at CFL 0.25: the reference at that rate;
 # - the same with Time stepping/Mass scaling = each of MASS_SCALINGS;
 # - the implicit theta = 1/2 case (AMG) at FACTORS times the explicit
@@ -24,68 +31,96 @@
 # 1e-5 takes about 30 minutes per explicit run.
 #
 # Usage: benchmarks/loading_rate.sh [build directory=build]
-# Environment: RATES (default "1e-3 1e-4"), FRICTIONS (default "0 0.3"),
+# Environment: PACKINGS (default "loose"; "loose dense" for both),
+# DENSE_CHECKPOINT, DENSE_TRAVEL, RATES (default "1e-3 1e-4"), FRICTIONS (default "0 0.3"),
 # MASS_SCALINGS (default "10 100"), FACTORS (default "30 300"), GAP_CHECK
 # (true or false; default that of the case), TOLERANCE (the implicit runs'
 # Newton tolerance; default that of the case).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
+packings=${PACKINGS:-loose}
 rates=${RATES:-1e-3 1e-4}
 frictions=${FRICTIONS:-0 0.3}
 scalings=${MASS_SCALINGS:-10 100}
 factors=${FACTORS:-30 300}
 
-# The wave speed and the explicit CFL 0.25 step of the case (E = 1000,
-# nu = 0.3, rho = 1, plane strain, h = 1/64).
-read -r wave_speed explicit_step <<< "$(python3 -c "
+# The wave speed of both cases (E = 1000, nu = 0.3, rho = 1, plane strain).
+wave_speed=$(python3 -c "
 E, nu, rho = 1000., 0.3, 1.
-c = (E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho)) ** 0.5
-print(c, 0.25 / 64 / c)")"
+print((E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho)) ** 0.5)")
 
-# compare NAME REFERENCE: the figures of walls.csv and energy.csv of run
-# NAME against those of REFERENCE (the platen is grain 1, moving down).
+# compare NAME REFERENCE START: the figures of walls.csv and energy.csv of
+# run NAME after time START against those of REFERENCE (the platen is
+# grain 1, moving down): steps, rejected steps, Newton iterations per step,
+# GMRES iterations per Newton iteration, residual evaluations per step,
+# then the platen work and force. A run resumed from a checkpoint holds
+# the history before it too; START leaves it out.
 compare() {
-  python3 - "$work/$1" "$work/$2" <<'PYTHON'
+  python3 - "$work/$1" "$work/$2" "$3" <<'PYTHON'
 import csv, math, sys
 
+start = float(sys.argv[3])
+
 def columns(path):
-    rows = list(csv.reader(open(path)))
+    # Rows after START (a resumed run repeats the header at the resume).
+    rows = [r for r in csv.reader(open(path))]
     names = [h.split(" [")[0] for h in rows[0]]
-    return {n: [float(r[i]) for r in rows[1:]] for i, n in enumerate(names)}
+    rows = [r for r in rows[1:] if r[0] != "step" and float(r[1]) > start]
+    return {n: [float(r[i]) for r in rows] for i, n in enumerate(names)}
+
+def before(path):
+    # The last row at or before START (the ledger at the checkpoint).
+    last = None
+    for r in csv.reader(open(path)):
+        if r[0] != "step" and r[0][0].isdigit() and float(r[1]) <= start:
+            last = r
+    return last
 
 def tenths(walls):
     t, dt, f = walls["time"], walls["dt"], walls["grain_1_force_y"]
-    end = t[-1]
+    length = (t[-1] - start) / 10
     return [sum(f[i] * dt[i] for i in range(len(t))
-                if k * end / 10 < t[i] <= (k + 1) * end / 10) / (end / 10)
+                if start + k * length < t[i] <= start + (k + 1) * length) / length
             for k in range(10)]
+
+def ledger(directory, name):
+    energy = columns(directory + "/energy.csv")
+    names = [h.split(" [")[0] for h in next(csv.reader(open(directory + "/energy.csv")))]
+    row = before(directory + "/energy.csv")
+    offset = float(row[names.index(name)]) if row else 0.
+    return energy[name][-1] - offset
 
 walls, reference = columns(sys.argv[1] + "/walls.csv"), columns(sys.argv[2] + "/walls.csv")
 energy = columns(sys.argv[1] + "/energy.csv")
-reference_energy = columns(sys.argv[2] + "/energy.csv")
-work = energy["boundary_work"][-1]
-reference_work = reference_energy["boundary_work"][-1]
+steps = len(energy["time"])
+newton = sum(energy["newton_iterations"])
+gmres = sum(energy["linear_iterations"])
+evaluations = sum(energy["residual_evaluations"])
+rejected = int(sum(energy["rejected_steps"]))
+work = ledger(sys.argv[1], "boundary_work")
+reference_work = ledger(sys.argv[2], "boundary_work")
+created = ledger(sys.argv[1], "balance_residual") / work if work else float("nan")
 mine, theirs = tenths(walls), tenths(reference)
 mean, reference_mean = sum(mine) / 10, sum(theirs) / 10
 deviation = max(abs(a - b) for a, b in zip(mine, theirs)) / reference_mean
-created = energy["balance_residual"][-1] / work if work else float("nan")
 numbers = sorted(x for x in walls["grain_1_inertial_number"] if math.isfinite(x) and x > 0)
 median = numbers[len(numbers) // 2] if numbers else float("inf")
-print(f"{work:.4g} | {work / reference_work:.3f} | {mean:.4g} | "
+print(f"{steps} | {rejected} | {newton / steps:.3g} | "
+      f"{gmres / newton if newton else 0:.3g} | {evaluations / steps:.3g} | "
+      f"{work:.4g} | {work / reference_work:.3f} | {mean:.4g} | "
       f"{mean / reference_mean:.3f} | {deviation:.2f} | {created:.3f} | {median:.1e}")
 PYTHON
 }
 
-# row NAME LABEL SECONDS REFERENCE: one line of the table.
+# row NAME LABEL SECONDS REFERENCE START: one line of the table.
 row() {
-  local name=$1 label=$2 seconds=$3 reference=$4
-  local fallback newton gmres evaluations
-  fallback=$(exact "$name" explicit_fallback_steps)
-  newton=$(figure "$name" newton_iterations_per_step)
-  gmres=$(figure "$name" linear_iterations_per_newton_iteration)
-  evaluations=$(figure "$name" residual_evaluations_per_step)
-  echo "| $label | $seconds | $(exact "$name" steps) | $(exact "$name" rejected_steps) | $fallback | $newton | $gmres | $evaluations | $(compare "$name" "$reference") |"
+  local name=$1 label=$2 seconds=$3 reference=$4 start=$5
+  local figures
+  figures=$(compare "$name" "$reference" "$start")
+  # Steps and rejections first, then the fallback steps (summary.csv; the
+  # explicit preparation of the dense packing has none), then the rest.
+  echo "| $label | $seconds | ${figures%% | *} | $(echo "$figures" | cut -d'|' -f2 | tr -d ' ') | $(exact "$name" explicit_fallback_steps) | $(echo "$figures" | cut -d'|' -f3- | sed 's/^ *//') |"
 }
 
 # timed NAME CASE EXTRA: run, and print the wall time in seconds (or
@@ -96,7 +131,7 @@ timed() {
   if run "$1" "$2" "$3" 2> "$work/$1.err"; then
     python3 -c "print(f'{$(date +%s.%N) - $start:.0f}')"
   else
-    echo "failed: $(tail -c 200 "$work/$1.err" | tr '\n|' '  ')"
+    echo "failed: $(grep -h -m1 'error' "$work/$1.err" "$work/$1.out" 2> /dev/null | cut -c1-160 | tr '|' ' ')"
     return 1
   fi
 }
@@ -110,41 +145,90 @@ if [ -n "${TOLERANCE:-}" ]; then
   tolerance_text="subsection Nonlinear solver\n  set Tolerance = $TOLERANCE\nend"
 fi
 
-echo "| V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-for rate in $rates; do
-  read -r speed end_time <<< "$(python3 -c "v = $rate * $wave_speed; print(v, 0.037 / v)")"
-  for friction in $frictions; do
-    if [ "$friction" = 0 ]; then
-      contact="subsection Contact\n  set Contact model = frictionless\nend"
-    else
-      contact="subsection Contact\n  set Contact model = Coulomb friction\n  set Friction coefficient = $friction\nend"
-    fi
-    common="$contact\n$gap_text\nsubsection Grains\n  subsection Platen\n    set Prescribed velocity = 0; -$speed\n  end\nend\nsubsection Time stepping\n  set End time = $end_time\nend"
-    reference="explicit_${rate}_$friction"
-    if ! seconds=$(timed "$reference" slow_compression_explicit "$common"); then
-      echo "| $rate | $friction | explicit | $seconds |"
-      continue
-    fi
-    echo "| $rate | $friction $(row "$reference" "explicit CFL 0.25" "$seconds" "$reference")"
-    for alpha in $scalings; do
-      name="scaled_${rate}_${friction}_$alpha"
-      if seconds=$(timed "$name" slow_compression_explicit \
-        "$common\nsubsection Time stepping\n  set Mass scaling = $alpha\nend"); then
-        echo "| $rate | $friction $(row "$name" "explicit, mass scaling $alpha" "$seconds" "$reference")"
-      else
-        echo "| $rate | $friction | explicit, mass scaling $alpha | $seconds |"
+echo "| packing | V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+
+# The dense packing's checkpoint and its time (from the energy.csv of the
+# run that wrote it).
+dense_start=0
+dense_resume=""
+if [[ " $packings " == *" dense "* ]]; then
+  if [ -n "${DENSE_CHECKPOINT:-}" ]; then
+    dense_resume=$(realpath "$DENSE_CHECKPOINT")
+  else
+    run dense_preparation dense_packing_preparation ""
+    dense_resume=$work/dense_preparation/checkpoint-028000
+  fi
+  dense_start=$(python3 - "$dense_resume" <<'PYTHON'
+import csv, os, sys
+checkpoint = sys.argv[1].rstrip("/")
+step = int(os.path.basename(checkpoint).split("-")[1])
+for row in csv.reader(open(os.path.join(os.path.dirname(checkpoint), "energy.csv"))):
+    if row[0] == str(step):
+        print(row[1])
+        break
+PYTHON
+)
+fi
+
+for packing in $packings; do
+  if [ "$packing" = dense ]; then
+    explicit_case=dense_packing_preparation
+    implicit_case=dense_packing_preparation
+    cells=128
+    packing_frictions=0.3
+    start=$dense_start
+    resume="subsection Checkpoint\n  set Steps between checkpoints = 0\n  set Resume from = $dense_resume\nend"
+    implicit_text="subsection Time stepping\n  set Scheme = implicit theta\n  set Stress update = USF\nend\nsubsection Linear solver\n  set Preconditioner = AMG\nend"
+  else
+    explicit_case=slow_compression_explicit
+    implicit_case=slow_compression_implicit
+    cells=64
+    packing_frictions=$frictions
+    start=0
+    resume=""
+    implicit_text=""
+  fi
+  explicit_step=$(python3 -c "print(0.25 / $cells / $wave_speed)")
+  for rate in $rates; do
+    read -r speed end_time <<< "$(python3 -c "
+v = $rate * $wave_speed
+travel = ${DENSE_TRAVEL:-1.11e-3} if '$packing' == 'dense' else 0.037
+print(v, $start + travel / v)")"
+    for friction in $packing_frictions; do
+      contact=""
+      if [ "$packing" = loose ] && [ "$friction" = 0 ]; then
+        contact="subsection Contact\n  set Contact model = frictionless\nend"
+      elif [ "$packing" = loose ]; then
+        contact="subsection Contact\n  set Contact model = Coulomb friction\n  set Friction coefficient = $friction\nend"
       fi
-    done
-    for factor in $factors; do
-      name="implicit_${rate}_${friction}_$factor"
-      step=$(python3 -c "print($factor * $explicit_step)")
-      if seconds=$(timed "$name" slow_compression_implicit \
-        "$common\nsubsection Time stepping\n  set Time step = $step\nend\n$tolerance_text"); then
-        echo "| $rate | $friction $(row "$name" "implicit ${factor}x" "$seconds" "$reference")"
-      else
-        echo "| $rate | $friction | implicit ${factor}x | $seconds |"
+      common="$contact\n$gap_text\n$resume\nsubsection Grains\n  subsection Platen\n    set Prescribed velocity = 0; -$speed\n  end\nend\nsubsection Time stepping\n  set End time = $end_time\nend"
+      prefix="$packing | $rate | $friction"
+      reference="explicit_${packing}_${rate}_$friction"
+      if ! seconds=$(timed "$reference" "$explicit_case" "$common"); then
+        echo "| $prefix | explicit | $seconds |"
+        continue
       fi
+      echo "| $prefix $(row "$reference" "explicit CFL 0.25" "$seconds" "$reference" "$start")"
+      for alpha in $scalings; do
+        name="scaled_${packing}_${rate}_${friction}_$alpha"
+        if seconds=$(timed "$name" "$explicit_case" \
+          "$common\nsubsection Time stepping\n  set Mass scaling = $alpha\nend"); then
+          echo "| $prefix $(row "$name" "explicit, mass scaling $alpha" "$seconds" "$reference" "$start")"
+        else
+          echo "| $prefix | explicit, mass scaling $alpha | $seconds |"
+        fi
+      done
+      for factor in $factors; do
+        name="implicit_${packing}_${rate}_${friction}_$factor"
+        step=$(python3 -c "print($factor * $explicit_step)")
+        if seconds=$(timed "$name" "$implicit_case" \
+          "$common\n$implicit_text\nsubsection Time stepping\n  set Time step = $step\nend\n$tolerance_text"); then
+          echo "| $prefix $(row "$name" "implicit ${factor}x" "$seconds" "$reference" "$start")"
+        else
+          echo "| $prefix | implicit ${factor}x | $seconds |"
+        fi
+      done
     done
   done
 done
