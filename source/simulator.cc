@@ -135,6 +135,7 @@ namespace grainmpm
                                                parameters.output.directory,
                                                communicator);
     typename Postprocessor<dim>::HistoryLengths lengths;
+    typename CheckpointManager<dim>::MassChange mass_change;
     if (checkpoints->resuming())
       checkpoints->read_state([&](boost::archive::binary_iarchive &archive) {
         archive >> lengths.energy >> lengths.grains >> lengths.walls >>
@@ -175,10 +176,20 @@ namespace grainmpm
       GrainGenerator<dim> generator(parameters);
       grains = generator.generate(grid, particle_handler);
       if (checkpoints->resuming())
-        checkpoints->load(CheckpointManager<dim>::fingerprint(parameters,
-                                                              grains),
-                          grid,
-                          particle_handler);
+        {
+          checkpoints->load(CheckpointManager<dim>::fingerprint(parameters,
+                                                                grains),
+                            grid,
+                            particle_handler);
+          // Another Mass scaling than the checkpoint's: the points' masses
+          // follow it (before anything measures them), and the ledger's
+          // reference moves with the kinetic energy and momentum that
+          // changes (below, once the ledger is read).
+          mass_change = CheckpointManager<dim>::rescale_masses(parameters,
+                                                               grains,
+                                                               particle_handler,
+                                                               communicator);
+        }
 
       if (implicit)
         // (The progress stream is active unless --quiet, on rank 0.)
@@ -222,6 +233,7 @@ namespace grainmpm
                                       parameters.output.directory)
               .string());
         checkpoints->finish_resume();
+        summary.shift_reference(mass_change.kinetic, mass_change.momentum);
       }
     // The grains fill only part of the box: balance the material points.
     // A checkpoint is written right after a repartition, so a resumed run
@@ -236,9 +248,17 @@ namespace grainmpm
       [this](const auto &, const auto &) { ++n_lost; });
 
     if (!parameters.checkpoint.resume_from.empty())
-      pcout << "resumed from " << parameters.checkpoint.resume_from
-            << " at step " << step_offset << ", t = " << start_time
-            << std::endl;
+      {
+        pcout << "resumed from " << parameters.checkpoint.resume_from
+              << " at step " << step_offset << ", t = " << start_time
+              << std::endl;
+        if (mass_change.factor != 1.)
+          pcout << "the checkpoint's point masses multiplied by "
+                << mass_change.factor
+                << " (Mass scaling = " << parameters.time_stepping.mass_scaling
+                << "); the kinetic energy changed by " << mass_change.kinetic
+                << ", which moves the ledger's reference" << std::endl;
+      }
     else
       start_new_run();
   }

@@ -2,6 +2,7 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/postprocess/checkpoint_files.h>
 #include <grainmpm/postprocess/checkpoint_manager.h>
 
@@ -360,6 +361,46 @@ namespace grainmpm
 
 
   template <int dim>
+  typename CheckpointManager<dim>::MassChange
+  CheckpointManager<dim>::rescale_masses(
+    const Parameters<dim>             &parameters,
+    const std::vector<GrainInfo<dim>> &grains,
+    Particles::ParticleHandler<dim>   &particle_handler,
+    const MPI_Comm                     communicator)
+  {
+    using Layout = MaterialPointLayout<dim>;
+    MassChange change;
+    double     factor = 0.;
+    for (auto &particle : particle_handler)
+      {
+        auto               properties = particle.get_properties();
+        const unsigned int grain      = Layout::get_grain(properties);
+        const double       mass =
+          parameters.materials[grains[grain].material].density *
+          properties[Layout::initial_volume];
+        const double old_mass = properties[Layout::mass];
+        if (mass == old_mass)
+          continue;
+        if (!grains[grain].rigid)
+          {
+            const Tensor<1, dim> velocity = Layout::get_velocity(properties);
+            change.kinetic += 0.5 * (mass - old_mass) * velocity.norm_square();
+            change.momentum += (mass - old_mass) * velocity;
+            if (old_mass > 0.)
+              factor = mass / old_mass;
+          }
+        properties[Layout::mass] = mass;
+      }
+    change.kinetic  = Utilities::MPI::sum(change.kinetic, communicator);
+    change.momentum = Utilities::MPI::sum(change.momentum, communicator);
+    factor          = Utilities::MPI::max(factor, communicator);
+    change.factor   = factor > 0. ? factor : 1.;
+    return change;
+  }
+
+
+
+  template <int dim>
   std::string
   CheckpointManager<dim>::fingerprint(const Parameters<dim> &parameters,
                                       const std::vector<GrainInfo<dim>> &grains)
@@ -371,10 +412,13 @@ namespace grainmpm
     for (const unsigned int n : parameters.grid.n_cells)
       out << ' ' << n;
     out << '\n' << "materials: " << parameters.materials.size() << '\n';
+    // The density of the material, not the one Mass scaling makes of it:
+    // a run may resume with another scaling (rescale_masses()).
     for (const auto &material : parameters.materials)
       {
         out << "material " << material.name << ": "
-            << material.constitutive_model << ", density " << material.density
+            << material.constitutive_model << ", density "
+            << material.density / parameters.time_stepping.mass_scaling
             << ", Young's modulus " << material.youngs_modulus
             << ", Poisson's ratio " << material.poissons_ratio;
         out << material.get_model_parameters().fingerprint() << '\n';

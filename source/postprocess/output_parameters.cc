@@ -111,8 +111,9 @@ namespace grainmpm
                       "to. The grid, the materials "
                       "and the grains must be those of the checkpoint's "
                       "run (checked); the contact law, the loading, the "
-                      "scheme and its time step, the end time and the "
-                      "output may change. Empty: start at t = 0.");
+                      "scheme and its time step, the mass scaling, the end "
+                      "time and the output may change. Empty: start at "
+                      "t = 0.");
     prm.add_parameter(
       "Replace other checkpoints",
       replace_other_checkpoints,

@@ -46,8 +46,11 @@ namespace grainmpm
       "number I = (strain rate) d / sqrt(P / (alpha rho)) written in "
       "walls.csv for each moving rigid grain stays below about 1e-3 "
       "(doc/theory.md). The masses, momenta and kinetic energies written "
-      "are those of the scaled densities. 1 means no scaling. "
-      "Dimensionless.",
+      "are those of the scaled densities. A run resumed from a checkpoint "
+      "may use another factor than the checkpoint's: the points' masses "
+      "are then multiplied by the ratio (velocities kept), and the "
+      "ledger's reference moves with the kinetic energy that changes. 1 "
+      "means no scaling. Dimensionless.",
       Patterns::Double(1.));
     prm.add_parameter(
       "Minimum time step",

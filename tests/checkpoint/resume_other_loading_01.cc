@@ -25,13 +25,23 @@
 // are left as they were, and its particles.pvd names the first run's
 // particle files up to the checkpoint (as ../results-first/...) and its
 // own after it: every file it names exists.
+// A third run resumes, also in an empty directory, explicit with
+// Time stepping/Mass scaling = 4, which the checkpoint did not have: the
+// points' masses are multiplied by 4 on the resume, the explicit step
+// doubles (half the steps after the checkpoint, within 10 %), the balance
+// residual goes on from its value at the checkpoint (the ledger's
+// reference moves with the kinetic energy: over the first step it changes
+// by 4 times the unscaled run's change, within 25 %), and the platen work
+// after the checkpoint is the unscaled explicit run's within 2 %.
 
 #include <grainmpm/simulator.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <limits>
 
 #include "../tests.h"
@@ -54,12 +64,12 @@ write_prm(const std::string &name,
       << "subsection Grains\n  subsection Platen\n"
       << "    set Prescribed velocity = 0; " << -speed << "\n  end\nend\n"
       << "subsection Time stepping\n  set End time = " << end_time << '\n'
-      << (scheme == "explicit" ? "  set Scheme = explicit leapfrog\n"
+      << (scheme != "implicit" ? "  set Scheme = explicit leapfrog\n"
                                  "  set Stress update = USL\n"
                                  "  set Time step = 0\n"
                                  "  set CFL number = 0.25\n" :
                                  "")
-      << "end\n"
+      << (scheme == "scaled" ? "  set Mass scaling = 4\n" : "") << "end\n"
       << "subsection Output\n  set Output directory = " << directory
       << "\n  set Test mode = true\n  set Write particles = true\n"
       << "  set Write grid = false\n  set Output interval = 0.05\nend\n"
@@ -112,8 +122,12 @@ main(int argc, char **argv)
   const std::uintmax_t first_pvd_size =
     std::filesystem::file_size("results-first/particles.pvd");
 
-  std::vector<double> platen_work;
-  for (const std::string scheme : {"explicit", "implicit"})
+  std::vector<double>       platen_work;
+  std::vector<unsigned int> steps_after;
+  // The change of the balance residual over the first step after the
+  // checkpoint (the platen's jump to the new speed is an impact).
+  std::vector<double> first_balance_change;
+  for (const std::string scheme : {"explicit", "implicit", "scaled"})
     {
       const std::string directory = "results-" + scheme;
       const std::string checkpoint =
@@ -142,11 +156,44 @@ main(int argc, char **argv)
       const std::vector<double> &newton = energy.at("newton_iterations");
       bool scheme_used = energy.at("time").back() > end_time - 1e-12;
       for (unsigned int r = checkpoint_step + 1; r < newton.size(); ++r)
-        scheme_used = scheme_used && (scheme == "explicit" ? newton[r] == 0. :
-                                                             newton[r] >= 1.);
-      deallog << scheme << ": " << newton.size() - 1 - checkpoint_step
-              << " steps after the checkpoint, all of the " << scheme
+        scheme_used = scheme_used && (scheme == "implicit" ? newton[r] >= 1. :
+                                                             newton[r] == 0.);
+      steps_after.push_back(newton.size() - 1 - checkpoint_step);
+      deallog << scheme << ": " << steps_after.back()
+              << " steps after the checkpoint, all of the "
+              << (scheme == "implicit" ? "implicit" : "explicit")
               << " scheme: " << (scheme_used ? "yes" : "no") << std::endl;
+      const std::vector<double> &balance = energy.at("balance_residual");
+      first_balance_change.push_back(balance[checkpoint_step + 1] -
+                                     balance[checkpoint_step]);
+      if (scheme == "scaled")
+        {
+          // Mass scaling 4 doubles the explicit step; the points' masses
+          // are multiplied by 4 on the resume, and the ledger's reference
+          // moves with the kinetic energy, so that the balance residual
+          // goes on from its value at the checkpoint: over the first step
+          // it changes by what the platen's jump to the new speed costs,
+          // 4 times the unscaled run's change (without the move it would
+          // change by the kinetic energy's jump, +2.9e-5 against -2.9e-6).
+          const double ratio =
+            first_balance_change[2] / (4. * first_balance_change[0]);
+          deallog << "scaled: steps after the checkpoint / explicit's in "
+                  << "(0.45, 0.55): "
+                  << (std::abs(double(steps_after[2]) / steps_after[0] - 0.5) <
+                          0.05 ?
+                        "yes" :
+                        "no")
+                  << std::endl;
+          deallog << "scaled: the balance residual's change over the "
+                  << "first step after the checkpoint is 4 times the "
+                  << "unscaled run's within 25 %: "
+                  << (std::abs(ratio - 1.) < 0.25 ? "yes" : "no") << std::endl;
+          if (std::getenv("GRAINMPM_VERBOSE") != nullptr)
+            std::cout << "first balance changes " << first_balance_change[0]
+                      << ' ' << first_balance_change[2] << " ratio " << ratio
+                      << " steps " << steps_after[2] << " / " << steps_after[0]
+                      << std::endl;
+        }
 
       // The platen (grain 2) at the checkpoint, from its last output
       // before it, and at the end.
@@ -211,4 +258,12 @@ main(int argc, char **argv)
           << (std::abs(platen_work[1] / platen_work[0] - 1.) < 0.02 ? "yes" :
                                                                       "no")
           << std::endl;
+  deallog << "platen work after the checkpoint, mass scaling 4 / explicit "
+          << "within 2 %: "
+          << (std::abs(platen_work[2] / platen_work[0] - 1.) < 0.02 ? "yes" :
+                                                                      "no")
+          << std::endl;
+  if (std::getenv("GRAINMPM_VERBOSE") != nullptr)
+    std::cout << "platen work ratios " << platen_work[1] / platen_work[0] << ' '
+              << platen_work[2] / platen_work[0] << std::endl;
 }

@@ -85,6 +85,33 @@ namespace grainmpm
          Particles::ParticleHandler<dim> &particle_handler) const;
 
     /**
+     * What rescale_masses() changed: the factor of the deformable points'
+     * masses (1 if none changed) and the change of their kinetic energy
+     * and momentum (summed over all ranks).
+     */
+    struct MassChange
+    {
+      double         factor  = 1.;
+      double         kinetic = 0.;
+      Tensor<1, dim> momentum;
+    };
+
+    /**
+     * After load(): give every material point of @p particle_handler the
+     * mass density times initial volume of this run's materials
+     * (@p parameters, after Parameters::apply_mass_scaling()) and grains
+     * @p grains. A run resumed with another `Time stepping/Mass scaling`
+     * than its checkpoint's so gets the masses of its own scaling;
+     * otherwise nothing changes (the product is the one the points were
+     * made with). The velocities are kept. Collective.
+     */
+    static MassChange
+    rescale_masses(const Parameters<dim>             &parameters,
+                   const std::vector<GrainInfo<dim>> &grains,
+                   Particles::ParticleHandler<dim>   &particle_handler,
+                   const MPI_Comm                     communicator);
+
+    /**
      * Run @p read on the state archive of the checkpoint the run resumes
      * from, turning a failed read into an InputError naming the checkpoint.
      */

@@ -77,6 +77,22 @@ namespace grainmpm
     void
     start(const EnergySummary<dim> &initial, const double momentum_scale);
 
+    /**
+     * The points' masses changed on a resume (another Mass scaling): move
+     * the reference energies and momentum (at the start and now) by the
+     * change @p kinetic of the kinetic energy and @p momentum of the
+     * momentum, so that the balance residual and the momentum change go on
+     * from their values at the checkpoint.
+     */
+    void
+    shift_reference(const double kinetic, const Tensor<1, dim> &momentum)
+    {
+      initial_energy.kinetic += kinetic;
+      initial_energy.momentum += momentum;
+      current_energy.kinetic += kinetic;
+      current_energy.momentum += momentum;
+    }
+
     /** One attempt of a step, accepted or rejected. */
     void
     add_attempt(const StepStatistics &statistics);
