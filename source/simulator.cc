@@ -5,7 +5,6 @@
 #include <grainmpm/base/stop_signals.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
-#include <grainmpm/postprocess/history_file.h>
 #include <grainmpm/postprocess/input_record.h>
 #include <grainmpm/simulator.h>
 #include <grainmpm/time_integration/explicit_leapfrog.h>
@@ -145,31 +144,10 @@ namespace grainmpm
     // the checkpoint's run up to the checkpoint.
     const std::string resume_source = checkpoints->resume_source();
     if (!resume_source.empty())
-      {
-        std::string error;
-        if (Utilities::MPI::this_mpi_process(communicator) == 0)
-          try
-            {
-              const std::string &to = parameters.output.directory;
-              copy_history_file(resume_source + "/energy.csv",
-                                to + "/energy.csv",
-                                lengths.energy);
-              copy_history_file(resume_source + "/grains.csv",
-                                to + "/grains.csv",
-                                lengths.grains);
-              copy_history_file(resume_source + "/walls.csv",
-                                to + "/walls.csv",
-                                lengths.walls);
-              copy_history_file(resume_source + "/contacts.csv",
-                                to + "/contacts.csv",
-                                lengths.contacts);
-            }
-          catch (const InputError &exception)
-            {
-              error = exception.what();
-            }
-        throw_on_all_ranks(error, communicator);
-      }
+      Postprocessor<dim>::copy_histories(resume_source,
+                                         parameters.output.directory,
+                                         lengths,
+                                         communicator);
 
     {
       TimerOutput::Scope  scope(timer, "setup");

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/postprocess/history_file.h>
 #include <grainmpm/postprocess/postprocessor.h>
 
 namespace grainmpm
@@ -62,6 +63,35 @@ namespace grainmpm
           0.,
         communicator,
         lengths.contacts);
+  }
+
+
+
+  template <int dim>
+  void
+  Postprocessor<dim>::copy_histories(const std::string    &source,
+                                     const std::string    &directory,
+                                     const HistoryLengths &lengths,
+                                     const MPI_Comm        communicator)
+  {
+    std::string error;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      try
+        {
+          for (const auto &[name, length] :
+               {std::make_pair("energy.csv", lengths.energy),
+                std::make_pair("grains.csv", lengths.grains),
+                std::make_pair("walls.csv", lengths.walls),
+                std::make_pair("contacts.csv", lengths.contacts)})
+            copy_history_file(source + "/" + name,
+                              directory + "/" + name,
+                              length);
+        }
+      catch (const InputError &exception)
+        {
+          error = exception.what();
+        }
+    throw_on_all_ranks(error, communicator);
   }
 
 

@@ -8,12 +8,10 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <vector>
 
 namespace grainmpm
 {
@@ -55,11 +53,10 @@ namespace grainmpm
 
   /**
    * A run resumed in another output directory than the one its checkpoint
-   * is in: start the history @p destination as the first @p length bytes
-   * of the checkpoint run's @p source, unless @p destination exists (then
-   * open_history_file() cuts it back as in the checkpoint run's own
-   * directory). Nothing to do for @p length 0 (a history the checkpoint
-   * run did not write).
+   * is in: start the history @p destination as a copy of the checkpoint
+   * run's @p source, unless @p destination exists; open_history_file()
+   * then cuts it back to its length at the checkpoint, @p length. Nothing
+   * to do for @p length 0 (a history the checkpoint run did not write).
    */
   inline void
   copy_history_file(const std::string   &source,
@@ -76,22 +73,12 @@ namespace grainmpm
                          "or shorter than at the checkpoint, so the history "
                          "up to it cannot be continued in '" +
                          destination + "'.");
-    std::ifstream     in(source, std::ios::binary);
-    std::ofstream     out(destination, std::ios::binary);
-    std::vector<char> buffer(1 << 16);
-    std::uintmax_t    left = length;
-    while (in && out && left > 0)
-      {
-        const std::streamsize chunk = static_cast<std::streamsize>(
-          std::min<std::uintmax_t>(left, buffer.size()));
-        in.read(buffer.data(), chunk);
-        out.write(buffer.data(), in.gcount());
-        left -= static_cast<std::uintmax_t>(in.gcount());
-      }
-    out.close();
-    if (left > 0 || !out)
+    std::error_code code;
+    std::filesystem::copy_file(source, destination, code);
+    if (code)
       throw InputError("Output/Output directory",
-                       "cannot write the file '" + destination + "'.");
+                       "cannot write the file '" + destination + "' (" +
+                         code.message() + ").");
   }
 
 

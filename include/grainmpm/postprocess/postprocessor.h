@@ -62,6 +62,19 @@ namespace grainmpm
       const HistoryLengths                  &lengths,
       const MPI_Comm                         communicator);
 
+    /**
+     * A run resumed in another output directory than its checkpoint's
+     * (CheckpointManager::resume_source()): start the history files in
+     * @p directory as copies of those in @p source, which had @p lengths
+     * at the checkpoint (copy_history_file()). Rank 0 copies; an error
+     * stops every rank. Collective.
+     */
+    static void
+    copy_histories(const std::string    &source,
+                   const std::string    &directory,
+                   const HistoryLengths &lengths,
+                   const MPI_Comm        communicator);
+
     /** The lengths of the history files now (for a checkpoint). */
     HistoryLengths
     get_lengths() const;
