@@ -178,7 +178,9 @@ for packing in $packings; do
     cells=128
     packing_frictions=0.3
     start=$dense_start
-    resume="subsection Checkpoint\n  set Steps between checkpoints = 0\n  set Resume from = $dense_resume\nend"
+    # (At rest at the checkpoint: a mass-scaled run keeps the points'
+    # kinetic energy rather than their velocities.)
+    resume="subsection Checkpoint\n  set Steps between checkpoints = 0\n  set Resume from = $dense_resume\n  set Scale velocities with the mass = true\nend"
     implicit_text="subsection Time stepping\n  set Scheme = implicit theta\n  set Stress update = USF\nend\nsubsection Linear solver\n  set Preconditioner = AMG\nend"
   else
     explicit_case=slow_compression_explicit

@@ -7,6 +7,7 @@
 #include <grainmpm/postprocess/checkpoint_manager.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iomanip>
@@ -381,13 +382,21 @@ namespace grainmpm
         const double old_mass = properties[Layout::mass];
         if (mass == old_mass)
           continue;
-        if (!grains[grain].rigid)
+        if (!grains[grain].rigid && old_mass > 0.)
           {
+            // Kept, or slower by the square root of the ratio so that the
+            // point keeps its kinetic energy (a vibration of the same
+            // amplitude, slower as the scaled wave speed).
             const Tensor<1, dim> velocity = Layout::get_velocity(properties);
-            change.kinetic += 0.5 * (mass - old_mass) * velocity.norm_square();
-            change.momentum += (mass - old_mass) * velocity;
-            if (old_mass > 0.)
-              factor = mass / old_mass;
+            const Tensor<1, dim> scaled =
+              parameters.checkpoint.scale_velocities_with_mass ?
+                std::sqrt(old_mass / mass) * velocity :
+                velocity;
+            Layout::set_velocity(scaled, properties);
+            change.kinetic += 0.5 * (mass * scaled.norm_square() -
+                                     old_mass * velocity.norm_square());
+            change.momentum += mass * scaled - old_mass * velocity;
+            factor = mass / old_mass;
           }
         properties[Layout::mass] = mass;
       }

@@ -124,6 +124,21 @@ namespace grainmpm
       "this run's checkpoint of the same step replaces, and only this "
       "run's own checkpoints are deleted as old.",
       Patterns::Bool());
+    prm.add_parameter(
+      "Scale velocities with the mass",
+      scale_velocities_with_mass,
+      "What a run resumed with another Time stepping/Mass scaling than its "
+      "checkpoint's does with the velocities of the deformable material "
+      "points, whose masses follow the new factor. false: they are kept, "
+      "which is right while the velocities are those of the loading (a "
+      "packing resumed at the rate it was loaded at). true: they are divided "
+      "by the square root of the mass ratio, so that each point keeps its "
+      "kinetic energy, which is right for a packing prepared at rest whose "
+      "velocities are left-over vibration: a vibration of the same amplitude "
+      "is slower by that factor, and kept velocities would give it alpha "
+      "times its energy. Either way the ledger's reference moves with the "
+      "kinetic energy and momentum that change.",
+      Patterns::Bool());
     prm.leave_subsection();
   }
 } // namespace grainmpm

@@ -48,9 +48,10 @@ namespace grainmpm
       "(doc/theory.md). The masses, momenta and kinetic energies written "
       "are those of the scaled densities. A run resumed from a checkpoint "
       "may use another factor than the checkpoint's: the points' masses "
-      "are then multiplied by the ratio (velocities kept), and the "
-      "ledger's reference moves with the kinetic energy that changes. 1 "
-      "means no scaling. Dimensionless.",
+      "are then multiplied by the ratio, their velocities kept or scaled "
+      "(Checkpoint/Scale velocities with the mass), and the ledger's "
+      "reference moves with the kinetic energy that changes. 1 means no "
+      "scaling. Dimensionless.",
       Patterns::Double(1.));
     prm.add_parameter(
       "Minimum time step",

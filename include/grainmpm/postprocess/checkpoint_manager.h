@@ -103,7 +103,10 @@ namespace grainmpm
      * @p grains. A run resumed with another `Time stepping/Mass scaling`
      * than its checkpoint's so gets the masses of its own scaling;
      * otherwise nothing changes (the product is the one the points were
-     * made with). The velocities are kept. Collective.
+     * made with). A deformable point's velocity is kept, or with
+     * `Checkpoint/Scale velocities with the mass` divided by the square
+     * root of its mass ratio, so that it keeps its kinetic energy.
+     * Collective.
      */
     static MassChange
     rescale_masses(const Parameters<dim>             &parameters,

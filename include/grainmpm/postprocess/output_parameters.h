@@ -41,6 +41,12 @@ namespace grainmpm
     unsigned int n_kept          = 2;
     std::string  resume_from;
     bool         replace_other_checkpoints = false;
+    /**
+     * On a resume with another mass scaling: divide the velocities by the
+     * square root of the mass ratio (keeping the kinetic energy) instead
+     * of keeping them.
+     */
+    bool scale_velocities_with_mass = false;
 
     void
     declare(ParameterHandler &prm);
