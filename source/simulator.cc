@@ -323,6 +323,26 @@ namespace grainmpm
                               summary.get_initial_energies(),
                               particle_handler);
     summary.add_energies(current);
+    // Energy created by the implicit steps (the balance residual above a
+    // tenth of the energy reference) is said once, with the levers.
+    const double created = summary.relative_balance();
+    if (implicit && !creation_noted && created > 0.1)
+      {
+        creation_noted = true;
+        pcout << "  note: at t = " << time.get_current_time()
+              << " the implicit steps have created energy: the balance "
+                 "residual is +"
+              << created
+              << " of the energy reference. A loose Nonlinear "
+                 "solver/Tolerance leaves errors that work like forces, and "
+                 "at Time stepping/Theta = 0.5 (here "
+              << parameters.time_stepping.theta
+              << ") long steps through contact can feed the fastest modes "
+                 "of a packing until it blows up. A tighter Tolerance, "
+                 "Theta = 0.6 (which damps those modes) or a smaller Time "
+                 "step helps (doc/theory.md, section 9.6)."
+              << std::endl;
+      }
     if (!std::isfinite(current.total()))
       throw InputError("Time stepping",
                        "the solution became NaN/infinite at t = " +

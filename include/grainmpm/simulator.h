@@ -196,6 +196,11 @@ namespace grainmpm
     std::unique_ptr<TimeIntegrator<dim>>                 stepper;
     /** Implicit runs with `Explicit fallback`: the explicit sub-steps. */
     std::unique_ptr<ExplicitFallback<dim>> fallback;
+    /**
+     * Whether the run has said that its implicit steps created energy
+     * (record_step()); said once.
+     */
+    bool creation_noted = false;
     /** The integrator of the last step: its grid and impulses are output. */
     const TimeIntegrator<dim>              *last_stepper = nullptr;
     std::unique_ptr<TimeStepController>     time_step_controller;

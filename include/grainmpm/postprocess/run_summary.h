@@ -125,6 +125,18 @@ namespace grainmpm
     }
 
     /**
+     * The balance residual now over the energy reference (the
+     * `balance_residual` of summary.csv): positive where the steps
+     * created energy.
+     */
+    double
+    relative_balance() const
+    {
+      return ledger.balance(current_energy, initial_energy) /
+             energy_reference();
+    }
+
+    /**
      * Print the summary of a run that took @p n_steps steps to @p time,
      * lost @p n_lost points in the particle handler and has
      * @p n_points points left, the largest of which equivalent plastic
