@@ -16,8 +16,9 @@
 # friction it runs:
 # - the explicit leapfrog (USL) at CFL 0.25: the reference at that rate;
 # - the same with Time stepping/Mass scaling = each of MASS_SCALINGS;
-# - the implicit theta = 1/2 case (AMG) at FACTORS times the explicit
-#   step, with Nonlinear solver/Tolerance = TOLERANCE if given.
+# - the implicit case (AMG) at FACTORS times the explicit step, with
+#   Nonlinear solver/Tolerance = TOLERANCE and Time stepping/Theta = THETA
+#   if given (else the case's: 1/2).
 # Per run it prints: wall time, steps, rejected steps, steps advanced by
 # the explicit fallback, Newton iterations per step, GMRES iterations per
 # Newton iteration, residual evaluations per step, the platen work and
@@ -35,7 +36,8 @@
 # DENSE_CHECKPOINT, DENSE_TRAVEL, RATES (default "1e-3 1e-4"), FRICTIONS (default "0 0.3"),
 # MASS_SCALINGS (default "10 100"), FACTORS (default "30 300"), GAP_CHECK
 # (true or false; default that of the case), TOLERANCE (the implicit runs'
-# Newton tolerance; default that of the case).
+# Newton tolerance; default that of the case), THETA (the implicit runs'
+# Theta; default that of the case).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
@@ -143,6 +145,9 @@ fi
 tolerance_text=""
 if [ -n "${TOLERANCE:-}" ]; then
   tolerance_text="subsection Nonlinear solver\n  set Tolerance = $TOLERANCE\nend"
+fi
+if [ -n "${THETA:-}" ]; then
+  tolerance_text="$tolerance_text\nsubsection Time stepping\n  set Theta = $THETA\nend"
 fi
 
 echo "| packing | V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I |"
