@@ -196,9 +196,8 @@ namespace grainmpm
     out << ", transfers = " << ledger.transfer / reference;
     if (!implicit)
       out << ", leapfrog = " << ledger.leapfrog / reference;
-    out << ", balance residual = "
-        << ledger.balance(current_energy, initial_energy) / reference
-        << " (largest " << largest_balance / reference << ")\n"
+    out << ", balance residual = " << relative_balance() << " (largest "
+        << largest_balance / reference << ")\n"
         << "  largest plastic strain:   " << largest_plastic_strain << "\n";
     if (implicit)
       {
@@ -281,9 +280,7 @@ namespace grainmpm
       {"boundary_work", ledger.boundary_work / reference, relative},
       {"transfer_work", ledger.transfer / reference, relative},
       {"leapfrog_work", ledger.leapfrog / reference, relative},
-      {"balance_residual",
-       ledger.balance(current_energy, initial_energy) / reference,
-       relative},
+      {"balance_residual", relative_balance(), relative},
       {"largest_balance_residual", largest_balance / reference, relative},
       {"grid_energy_change", grid_energy_change / reference, relative},
       {"largest_plastic_strain", largest_plastic_strain, "1"},
