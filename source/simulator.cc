@@ -234,7 +234,12 @@ namespace grainmpm
           pcout << "the checkpoint's point masses multiplied by "
                 << mass_change.factor
                 << " (Mass scaling = " << parameters.time_stepping.mass_scaling
-                << "); the kinetic energy changed by " << mass_change.kinetic
+                << "), their velocities "
+                << (parameters.checkpoint.scale_velocities_with_mass ?
+                      "divided by its square root (Checkpoint/Scale "
+                      "velocities with the mass)" :
+                      "kept")
+                << "; the kinetic energy changed by " << mass_change.kinetic
                 << ", which moves the ledger's reference" << std::endl;
       }
     else
