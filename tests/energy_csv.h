@@ -53,11 +53,12 @@ read_energy(const std::string &directory)
 
 
 /**
- * Run @p text (2D) as NAME.prm in test mode without particle and grid
+ * Run @p text (in @p dim dimensions, 2 unless given) as NAME.prm in test mode without particle and grid
  * output, writing into results-NAME, on every rank of MPI_COMM_WORLD;
  * return its energy.csv columns.
  */
-inline std::map<std::string, std::vector<double>>
+template <int dim = 2>
+std::map<std::string, std::vector<double>>
 run_case(const std::string &name, const std::string &text)
 {
   // One rank writes the file, the others wait for it.
@@ -67,7 +68,7 @@ run_case(const std::string &name, const std::string &text)
       << name << "\n  set Test mode = true\n  set Write particles = false\n"
       << "  set Write grid = false\nend\n";
   MPI_Barrier(MPI_COMM_WORLD);
-  grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
+  grainmpm::run<dim>(name + ".prm", MPI_COMM_WORLD);
   return read_energy("results-" + name);
 }
 

@@ -11,6 +11,9 @@
 //     checkpoints every 4 steps, resumed from step 28 of 37;
 // (b) the explicit single grain between walls to t = 0.3, resumed from
 //     step 1400, shortly after the first wall impact;
+// (b') in 3D, the sphere of tests/runs/sphere_rebound_3d.prm hitting the
+//     x+ wall, caught up by a smaller sphere (a pair contact), resumed from
+//     step 600;
 // (c) only the newest 'Checkpoints kept' remain, and a half-written
 //     checkpoint-NNNNNN.tmp left by a killed run does not disturb a resume.
 
@@ -46,6 +49,7 @@ yes_no(const bool condition)
 
 
 
+template <int dim>
 void
 check(const std::string &name,
       const std::string &shipped_case,
@@ -59,7 +63,7 @@ check(const std::string &name,
     {
       std::filesystem::remove_all(directory);
       std::ofstream prm(name + ".prm");
-      prm << "include " << GRAINMPM_SOURCE_DIR << "/prm/" << shipped_case
+      prm << "include " << GRAINMPM_SOURCE_DIR << "/" << shipped_case
           << ".prm\n"
           << extra
           << "subsection Output\n  set Output directory = " << directory
@@ -69,7 +73,7 @@ check(const std::string &name,
           << interval << "\n  set Checkpoints kept = 3\nend\n";
     }
   MPI_Barrier(MPI_COMM_WORLD);
-  grainmpm::run<2>(name + ".prm", MPI_COMM_WORLD);
+  grainmpm::run<dim>(name + ".prm", MPI_COMM_WORLD);
   const std::string energy   = contents(directory + "/energy.csv");
   const std::string grains   = contents(directory + "/grains.csv");
   const std::string walls    = contents(directory + "/walls.csv");
@@ -95,7 +99,7 @@ check(const std::string &name,
           << "\nend\n";
     }
   MPI_Barrier(MPI_COMM_WORLD);
-  grainmpm::run<2>(name + "_resumed.prm", MPI_COMM_WORLD);
+  grainmpm::run<dim>(name + "_resumed.prm", MPI_COMM_WORLD);
   unsigned int n_after = 0;
   for (const auto &entry : std::filesystem::directory_iterator(directory))
     if (entry.path().filename().string().rfind("checkpoint-", 0) == 0 &&
@@ -131,10 +135,19 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog_on_root();
-  check("disks", "two_disks_implicit", "", 4, 28);
-  check("grain",
-        "single_grain_rebound_explicit",
-        "subsection Time stepping\n  set End time = 0.3\nend\n",
-        700,
-        1400);
+  check<2>("disks", "prm/two_disks_implicit", "", 4, 28);
+  check<2>("grain",
+           "prm/single_grain_rebound_explicit",
+           "subsection Time stepping\n  set End time = 0.3\nend\n",
+           700,
+           1400);
+  // 3D: the sphere rebound, with a smaller sphere catching up with it.
+  check<3>("spheres",
+           "tests/runs/sphere_rebound_3d",
+           "subsection Grains\n  subsection Grain 2\n"
+           "    set Shape = sphere\n    set Centre = 0.12, 0.5, 0.5\n"
+           "    set Radius = 0.1\n    set Material = rubber\n"
+           "    set Initial velocity = 2; 0; 0\n  end\nend\n",
+           200,
+           600);
 }
