@@ -94,7 +94,8 @@ namespace
       {
         const std::string v = std::string("velocity_") + "xyz"[d];
         deallog << ' '
-                << impulse[d] / (m * (sphere_b.at(v).back() - sphere_b.at(v)[0]));
+                << impulse[d] /
+                     (m * (sphere_b.at(v).back() - sphere_b.at(v)[0]));
       }
     deallog << ", of sphere A =";
     for (unsigned int d = 0; d < 3; ++d)
@@ -128,8 +129,8 @@ namespace
           (sphere_a.at("coordination_number")[k] != (force > 0. ? 1. : 0.)) +
           (sphere_b.at("coordination_number")[k] != (force > 0. ? 1. : 0.));
       }
-    deallog << scheme << ": force over the outputs from t = " << first
-            << " to " << last << ", interruptions " << gaps_in_contact
+    deallog << scheme << ": force over the outputs from t = " << first << " to "
+            << last << ", interruptions " << gaps_in_contact
             << ", zero before and after; coordination numbers that "
                "disagree: "
             << coordination_mismatch << std::endl;
@@ -145,8 +146,7 @@ namespace
     const std::string cells = std::to_string(n_cells);
     run_case<3>(
       name,
-      common +
-        "subsection Background grid\n  set Number of cells = " + cells +
+      common + "subsection Background grid\n  set Number of cells = " + cells +
         ", " + cells + ", " + cells + "\nend\n" +
         "subsection Grains\n  subsection Ball\n    set Shape = sphere\n"
         "    set Centre = 0.5, 0.5, 0.5\n    set Radius = 0.2\n"
@@ -155,9 +155,10 @@ namespace
         "(4/3)*(x-0.5) - (2/3)*(z-0.5); (2/3)*(y-0.5) - (4/3)*(x-0.5)\n"
         "  end\nend\n"
         "subsection Time stepping\n  set End time = 0.5\nend\n");
-    const auto ball = grain_rows(read_csv("results-" + name + "/grains.csv"), 1);
-    const auto &times = ball.at("time");
-    const unsigned int  last  = times.size() - 1;
+    const auto ball =
+      grain_rows(read_csv("results-" + name + "/grains.csv"), 1);
+    const auto        &times = ball.at("time");
+    const unsigned int last  = times.size() - 1;
     // omega(0) / |omega(0)|, |omega(end)| / |omega(0)|, the cosine between
     // the axes at the start and at the end, and the rotation vector against
     // the time integral of omega (trapezoidal rule over the outputs).
@@ -173,7 +174,8 @@ namespace
           integral[d] +=
             0.5 * (times[k] - times[k - 1]) * (omega[k] + omega[k - 1]);
       }
-    deallog << "spin, R = " << 0.2 * n_cells << " h: omega(0) / 2 = " << omega_0[0] / 2. << ' '
+    deallog << "spin, R = " << 0.2 * n_cells
+            << " h: omega(0) / 2 = " << omega_0[0] / 2. << ' '
             << omega_0[1] / 2. << ' ' << omega_0[2] / 2.
             << "; at t = " << times[last]
             << ": |omega| / |omega(0)| = " << omega_end.norm() / omega_0.norm()

@@ -96,8 +96,8 @@ main(int argc, char **argv)
     deallog << "floor: force / weight over t in [1, 2] = "
             << -mean(times, walls.at("wall_z-_force_z"), 1., 2.) / weight
             << ", side walls "
-            << mean(times, walls.at("wall_x-_force_x"), 1., 2.) / weight
-            << ", " << mean(times, walls.at("wall_y-_force_y"), 1., 2.) / weight
+            << mean(times, walls.at("wall_x-_force_x"), 1., 2.) / weight << ", "
+            << mean(times, walls.at("wall_y-_force_y"), 1., 2.) / weight
             << std::endl;
   }
 
@@ -147,10 +147,10 @@ main(int argc, char **argv)
     {
       const std::string name =
         std::string("impact_") + (implicit ? "implicit" : "explicit");
-      const auto   energy  = run_case<3>(name,
-                                      common +
-                                        sphere("Ball", "0.7, 0.5, 0.5", "1; 0; 0") +
-                                        scheme(implicit, 0.3));
+      const auto energy =
+        run_case<3>(name,
+                    common + sphere("Ball", "0.7, 0.5, 0.5", "1; 0; 0") +
+                      scheme(implicit, 0.3));
       const auto   walls   = read_csv("results-" + name + "/walls.csv");
       const auto  &px      = energy.at("momentum_x");
       const double change  = px.back() - px.front();
