@@ -17,6 +17,12 @@
 # Printed: ns per point per step, its ratio to the plain kernel (goal <= 3.5),
 # and the speed-up of 2 ranks over 1 (goal >= 1.7).
 #
+# With DIM=3 the same in 3D: the cells inside [0.25, 0.75]^3 of a
+# CELLS^3 grid on the unit cube (by default 64 and 2: 262,144 points, 8 per
+# cell), gravity (0, -1, 0), against the 3D plain kernel
+# (benchmarks/explicit_step/plain_kernel_3d.cc); also printed: the peak
+# memory per point (summed over the ranks, from summary.csv).
+#
 # With PERF=1 (and perf installed) the 2-rank run of the first kernel is
 # also recorded with perf: the share of the samples in the MPI library and
 # its transport (libmpi, libopen-pal, UCX, ...), which is time spent in or
@@ -26,7 +32,8 @@
 # 64 or 81 ns/point/step from one run to the next), so every figure is the
 # fastest of REPEAT runs.
 #
-# Usage: [KERNELS="linear uGIMP"] [STEPS=20] [REPEAT=3] [CELLS=1024] [PER_DIR=2] [PERF=1]
+# Usage: [DIM=2] [KERNELS="linear uGIMP"] [STEPS=20] [REPEAT=3] [CELLS=1024 (3D: 64)]
+#        [PER_DIR=2] [PERF=1]
 #        bash benchmarks/whole_process.sh [build directory]
 # About 8 minutes on two cores.
 set -euo pipefail
@@ -34,7 +41,8 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 steps=${STEPS:-20}
 repeat=${REPEAT:-3}
-cells=${CELLS:-1024}
+dim=${DIM:-2}
+if [ "$dim" = 3 ]; then cells=${CELLS:-64}; else cells=${CELLS:-1024}; fi
 per_dir=${PER_DIR:-2}
 kernels=${KERNELS:-linear uGIMP}
 grainmpm=$PWD/$build/source/grainmpm
@@ -47,7 +55,7 @@ dt=$(awk 'BEGIN { E = 1000; nu = 0.3; rho = 1;
   c = sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho));
   printf "%.12g", 0.1 / '"$cells"' / c }')
 
-write_case() { # NAME KERNEL
+write_case_2d() { # NAME KERNEL
   cat > "$work/$1.prm" <<EOF
 set Dimension = 2
 subsection Background grid
@@ -96,6 +104,56 @@ end
 EOF
 }
 
+write_case_3d() { # NAME KERNEL
+  cat > "$work/$1.prm" <<EOF
+set Dimension = 3
+subsection Background grid
+  set Lower corner        = 0, 0, 0
+  set Upper corner        = 1, 1, 1
+  set Number of cells     = $cells, $cells, $cells
+  set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip, z-: free slip, z+: free slip
+end
+subsection Physics
+  set Gravity = 0, -1, 0
+end
+subsection Materials
+  subsection block
+    set Constitutive model = linear elastic
+    set Density            = 1
+    set Young's modulus    = 1000
+    set Poisson's ratio    = 0.3
+  end
+end
+subsection Grains
+  subsection Grain 1
+    set Shape            = box
+    set Centre           = 0.5, 0.5, 0.5
+    set Size             = 0.5, 0.5, 0.5
+    set Material         = block
+    set Initial velocity = 0.1; 0; 0
+  end
+end
+subsection Material points
+  set Particles per cell = $per_dir
+  set Shape functions    = $2
+end
+subsection Time stepping
+  set Scheme                  = explicit leapfrog
+  set Stress update           = USF
+  set Time step               = $dt
+  set Maximum number of steps = $steps
+end
+subsection Output
+  set Output directory = $work/$1
+  set Output interval  = 1000
+  set Write particles  = false
+  set Write grid       = false
+end
+EOF
+}
+
+write_case() { write_case_"$dim"d "$@"; }
+
 # shellcheck source=common/summary.sh
 source benchmarks/common/summary.sh
 
@@ -108,11 +166,11 @@ step_ns() {
 }
 
 plain=$(for run in $(seq 1 "$repeat"); do
-  "$PWD/$build/benchmarks/explicit_step" "$cells" "$per_dir" "$steps" plain
+  "$PWD/$build/benchmarks/explicit_step" "$cells" "$per_dir" "$steps" "$([ "$dim" = 3 ] && echo plain3d || echo plain)"
 done | awk '/plain-array kernel:/ { if (best == "" || $3 < best) best = $3 } END { print best }')
-printf '%d^2 cells, %d^2 points per cell; plain-array kernel (linear, USF, one core): %.1f ns/point/step\n\n' "$cells" "$per_dir" "$plain"
+printf '%dD, %d^%d cells, %d^%d points per cell; plain-array kernel (linear, USF, one core): %.1f ns/point/step\n\n' "$dim" "$cells" "$dim" "$per_dir" "$dim" "$plain"
 printf 'fastest of %d runs each\n' "$repeat"
-printf '%-8s %5s %18s %16s %12s\n' kernel ranks "ns/point/step" "/ plain kernel" "speed-up"
+printf '%-8s %5s %18s %16s %12s %18s\n' kernel ranks "ns/point/step" "/ plain kernel" "speed-up" "bytes/point"
 for kernel in $kernels; do
   write_case "$kernel" "$kernel"
   for ranks in 1 2; do
@@ -122,10 +180,12 @@ for kernel in $kernels; do
       t=$(step_ns "$kernel")
       best=$(awk -v a="$best" -v b="$t" 'BEGIN { print (a == "" || b < a) ? b : a }')
     done
-    if [ "$ranks" = 1 ]; then one=$best; else two=$best; fi
+    # Peak memory (summed over the ranks) per point, of the last run.
+    memory=$(awk "BEGIN { printf \"%.0f\", 1048576 * $(summary_value "$work/$kernel/summary.csv" peak_memory) / $(summary_value "$work/$kernel/summary.csv" material_points) }")
+    if [ "$ranks" = 1 ]; then one=$best; one_memory=$memory; else two=$best; two_memory=$memory; fi
   done
-  printf '%-8s %5d %18.1f %16.2f %12s\n' "$kernel" 1 "$one" "$(awk "BEGIN { print $one / $plain }")" -
-  printf '%-8s %5d %18.1f %16.2f %12.2f\n' "$kernel" 2 "$two" "$(awk "BEGIN { print $two / $plain }")" "$(awk "BEGIN { print $one / $two }")"
+  printf '%-8s %5d %18.1f %16.2f %12s %18s\n' "$kernel" 1 "$one" "$(awk "BEGIN { print $one / $plain }")" - "$one_memory"
+  printf '%-8s %5d %18.1f %16.2f %12.2f %18s\n' "$kernel" 2 "$two" "$(awk "BEGIN { print $two / $plain }")" "$(awk "BEGIN { print $one / $two }")" "$two_memory"
 done
 echo "(ns/point/step of 2 ranks: wall time x 1 / points, so the ratio to the"
 echo " one-core plain kernel falls with the speed-up; goals: 1 rank <= 3.5,"

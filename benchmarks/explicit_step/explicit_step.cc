@@ -10,7 +10,9 @@
 //
 // Usage: explicit_step [n_cells=512] [particles_per_direction=4] [steps=10]
 //                      [shape functions=linear]
-// (the plain kernel always uses the linear hats).
+// (the plain kernel always uses the linear hats). With "plain" or "plain3d"
+// as the shape functions, only the 2D or the 3D plain-array kernel runs
+// (on an n_cells^3 grid in 3D).
 
 #include <grainmpm/time_integration/explicit_leapfrog.h>
 
@@ -39,6 +41,16 @@ main(int argc, char *argv[])
         benchmarks::run_plain_kernel(n_cells, per_dir, n_steps);
       std::cout << "  plain-array kernel:        " << plain.ns_per_particle_step
                 << " ns/particle/step\n";
+      return 0;
+    }
+  if (kernel == "plain3d")
+    {
+      // Only the 3D plain-array kernel (benchmarks/whole_process.sh, DIM=3).
+      const auto plain =
+        benchmarks::run_plain_kernel_3d(n_cells, per_dir, n_steps);
+      std::cout << "  plain-array kernel:        " << plain.ns_per_particle_step
+                << " ns/particle/step (3D, " << plain.n_particles
+                << " particles, checksum " << plain.checksum << ")\n";
       return 0;
     }
   const double dt = 0.1 / n_cells / benchmarks::ElasticBlock::wave_speed();

@@ -10,9 +10,9 @@
 /**
  * @file
  * A dependency-free (C++17 standard library only) plain-array implementation
- * of a 2D explicit Material Point Method step. It serves as the reference
- * "same work in plain arrays" kernel against which the deal.II based
- * implementation of the explicit step is compared.
+ * of a 2D explicit Material Point Method step (and of a 3D one). It serves as
+ * the reference "same work in plain arrays" kernel against which the deal.II
+ * based implementation of the explicit step is compared.
  */
 
 namespace grainmpm
@@ -63,6 +63,19 @@ namespace grainmpm
     run_plain_kernel(const unsigned int n_cells,
                      const unsigned int particles_per_cell_per_direction,
                      const unsigned int n_steps);
+
+    /**
+     * The same in 3D (plain_kernel_3d.cc): trilinear shape functions on a
+     * uniform grid of @p n_cells^3 cells covering the unit cube, the block
+     * of the cells inside $[0.25,0.75]^3$ with
+     * @p particles_per_cell_per_direction cubed particles per cell, linear
+     * elastic with a Jaumann stress rate, initial velocity (0.1, 0, 0),
+     * gravity (0, -1, 0), free-slip walls, time step 0.1 h / c.
+     */
+    PlainKernelResult
+    run_plain_kernel_3d(const unsigned int n_cells,
+                        const unsigned int particles_per_cell_per_direction,
+                        const unsigned int n_steps);
   } // namespace benchmarks
 } // namespace grainmpm
 
