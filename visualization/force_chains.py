@@ -8,7 +8,9 @@ requested time, the material points in light greys (alternating by grain)
 and each contact as a line from the centre of one grain to the centre of
 the other (to the contact point for a rigid grain, such as a platen), its
 width proportional to the normal contact force (the mean over the output
-interval that ends at that time) and its colour showing the force.
+interval that ends at that time) and its colour showing the force. A 3D
+run is seen along z, through faint grains, so that the chains of all
+depths show.
 
   xvfb-run -a pvbatch visualization/force_chains.py \\
       results-compression_of_100_disks/particles.pvd --times 0.5 1 \\
@@ -127,6 +129,10 @@ def main(argv):
     if largest_force <= 0.0:
         sys.exit("force_chains.py: no contact forces at t = %s" % panels)
     width = arguments.width or (bounds[1] - bounds[0]) / 60.0
+    # In 3D the view along z sees the chains through the grains: the
+    # material points are drawn faint, or they would hide all but the
+    # front layer of chains.
+    opacity = 0.08 if bounds[5] - bounds[4] > 2.0 * spacing else 1.0
 
     # Grains in two light greys, alternating by grain number.
     grey = GetColorTransferFunction("grain")
@@ -159,7 +165,9 @@ def main(argv):
     layout = CreateLayout("force chains")
     views = []
     for time in panels:
-        view = particle_view(particles, "grain", grey, spacing, [1.0, 1.0, 1.0], time)
+        view = particle_view(
+            particles, "grain", grey, spacing, [1.0, 1.0, 1.0], time, opacity
+        )
         display = Show(tubes, view)
         display.ColorArrayName = ["POINTS", "normal_force"]
         display.LookupTable = force_lut

@@ -25,9 +25,9 @@ def splat_spacing(data):
     return sizes[n // 2] ** (1.0 / 3.0 if three_d else 0.5)
 
 
-def particle_view(source, array, lut, spacing, background, time):
+def particle_view(source, array, lut, spacing, background, time, opacity=1.0):
     """A render view of SOURCE's points as disks of radius 0.75 spacing,
-    coloured by the point array ARRAY through LUT, at TIME."""
+    coloured by the point array ARRAY through LUT, at TIME, with OPACITY."""
     from paraview.simple import CreateRenderView, Show
 
     view = CreateRenderView()
@@ -45,6 +45,7 @@ def particle_view(source, array, lut, spacing, background, time):
     display.GaussianRadius = 0.75 * spacing
     display.ColorArrayName = ["POINTS", array]
     display.LookupTable = lut
+    display.Opacity = opacity
     display.SetScalarBarVisibility(view, False)
     return view
 
