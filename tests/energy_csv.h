@@ -43,6 +43,44 @@ read_csv(const std::string &filename)
 
 
 
+/** The rows of @p grains (grains.csv columns) of grain @p grain (1-based). */
+inline std::map<std::string, std::vector<double>>
+grain_rows(const std::map<std::string, std::vector<double>> &grains,
+           const unsigned int                                grain)
+{
+  std::map<std::string, std::vector<double>> rows;
+  for (unsigned int i = 0; i < grains.at("grain").size(); ++i)
+    if (grains.at("grain")[i] == grain)
+      for (const auto &[name, column] : grains)
+        rows[name].push_back(column[i]);
+  return rows;
+}
+
+
+
+/**
+ * Time mean of @p values over the rows with time in [@p from, @p to], each
+ * row weighted by its interval since the row before.
+ */
+inline double
+time_mean(const std::vector<double> &times,
+          const std::vector<double> &values,
+          const double               from,
+          const double               to)
+{
+  double sum = 0., weight = 0.;
+  for (unsigned int i = 1; i < times.size(); ++i)
+    if (times[i] >= from && times[i] <= to)
+      {
+        const double dt = times[i] - times[i - 1];
+        sum += values[i] * dt;
+        weight += dt;
+      }
+  return sum / weight;
+}
+
+
+
 /** The columns of the energy.csv in @p directory. */
 inline std::map<std::string, std::vector<double>>
 read_energy(const std::string &directory)

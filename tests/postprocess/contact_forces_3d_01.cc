@@ -34,21 +34,6 @@ namespace
     "  end\nend\n"
     "subsection Output\n  set Output interval = 0.02\nend\n";
 
-  /** The rows of grains.csv of grain @p grain (1-based). */
-  std::map<std::string, std::vector<double>>
-  grain_rows(const std::map<std::string, std::vector<double>> &grains,
-             const unsigned int                                grain)
-  {
-    std::map<std::string, std::vector<double>> rows;
-    for (unsigned int i = 0; i < grains.at("grain").size(); ++i)
-      if (grains.at("grain")[i] == grain)
-        for (const auto &[name, column] : grains)
-          rows[name].push_back(column[i]);
-    return rows;
-  }
-
-
-
   void
   collide(const bool implicit)
   {

@@ -57,24 +57,6 @@ namespace
            "    set Initial velocity = " +
            velocity + "\n  end\nend\n";
   }
-
-  /** Mean of @p values over the rows with time in [from, to]. */
-  double
-  mean(const std::vector<double> &times,
-       const std::vector<double> &values,
-       const double               from,
-       const double               to)
-  {
-    double sum = 0., weight = 0.;
-    for (unsigned int i = 1; i < times.size(); ++i)
-      if (times[i] >= from && times[i] <= to)
-        {
-          const double dt = times[i] - times[i - 1];
-          sum += values[i] * dt;
-          weight += dt;
-        }
-    return sum / weight;
-  }
 } // namespace
 
 
@@ -96,14 +78,15 @@ main(int argc, char **argv)
       const auto   walls  = read_csv("results-" + name + "/walls.csv");
       const auto   grains = read_csv("results-" + name + "/grains.csv");
       const double weight = 10. * grains.at("mass").front();
-      deallog << (implicit ? "implicit" : "explicit")
-              << ": floor force / weight over t in [1, 2] = "
-              << -mean(walls.at("time"), walls.at("wall_y-_force_y"), 1., 2.) /
-                   weight
-              << ", side walls "
-              << mean(walls.at("time"), walls.at("wall_x-_force_x"), 1., 2.) /
-                   weight
-              << std::endl;
+      deallog
+        << (implicit ? "implicit" : "explicit")
+        << ": floor force / weight over t in [1, 2] = "
+        << -time_mean(walls.at("time"), walls.at("wall_y-_force_y"), 1., 2.) /
+             weight
+        << ", side walls "
+        << time_mean(walls.at("time"), walls.at("wall_x-_force_x"), 1., 2.) /
+             weight
+        << std::endl;
     }
 
   for (const bool gap_check : {true, false})
@@ -127,11 +110,12 @@ main(int argc, char **argv)
       deallog << "rigid slab" << (gap_check ? "" : " (Gap check = false)")
               << ": centre x at the end " << grains.at("centre_x").back()
               << ", force_y / -weight = "
-              << -mean(times, walls.at("grain_1_force_y"), 1., 2.) / weight
+              << -time_mean(times, walls.at("grain_1_force_y"), 1., 2.) / weight
               << ", torque / (-0.1 weight) = "
-              << -mean(times, walls.at("grain_1_torque_z"), 1., 2.) /
+              << -time_mean(times, walls.at("grain_1_torque_z"), 1., 2.) /
                    (0.1 * weight)
-              << ", floor " << mean(times, walls.at("wall_y-_force_y"), 1., 2.)
+              << ", floor "
+              << time_mean(times, walls.at("wall_y-_force_y"), 1., 2.)
               << std::endl;
     }
 

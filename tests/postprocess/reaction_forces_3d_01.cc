@@ -54,24 +54,6 @@ namespace
            velocity + "\n  end\nend\n";
   }
 
-  /** Mean of @p values over the rows with time in [from, to]. */
-  double
-  mean(const std::vector<double> &times,
-       const std::vector<double> &values,
-       const double               from,
-       const double               to)
-  {
-    double sum = 0., weight = 0.;
-    for (unsigned int i = 1; i < times.size(); ++i)
-      if (times[i] >= from && times[i] <= to)
-        {
-          const double dt = times[i] - times[i - 1];
-          sum += values[i] * dt;
-          weight += dt;
-        }
-    return sum / weight;
-  }
-
   const std::string gravity =
     "subsection Physics\n  set Gravity = 0, 0, -10\nend\n";
 } // namespace
@@ -94,10 +76,11 @@ main(int argc, char **argv)
     const double weight = 10. * grains.at("mass").front();
     const auto  &times  = walls.at("time");
     deallog << "floor: force / weight over t in [1, 2] = "
-            << -mean(times, walls.at("wall_z-_force_z"), 1., 2.) / weight
+            << -time_mean(times, walls.at("wall_z-_force_z"), 1., 2.) / weight
             << ", side walls "
-            << mean(times, walls.at("wall_x-_force_x"), 1., 2.) / weight << ", "
-            << mean(times, walls.at("wall_y-_force_y"), 1., 2.) / weight
+            << time_mean(times, walls.at("wall_x-_force_x"), 1., 2.) / weight
+            << ", "
+            << time_mean(times, walls.at("wall_y-_force_y"), 1., 2.) / weight
             << std::endl;
   }
 
@@ -115,31 +98,35 @@ main(int argc, char **argv)
     const double weight = 10. * grains.at("mass")[1];
     const auto  &times  = walls.at("time");
     // The ball's mean centre over the window gives the lever arm.
+    const auto   ball      = grain_rows(grains, 2);
     double       centre[2] = {0., 0.};
     unsigned int n_rows    = 0;
-    for (unsigned int i = 0; i < grains.at("time").size(); ++i)
-      if (grains.at("grain")[i] == 2 && grains.at("time")[i] >= 1.)
+    for (unsigned int i = 0; i < ball.at("time").size(); ++i)
+      if (ball.at("time")[i] >= 1.)
         {
-          centre[0] += grains.at("centre_x")[i];
-          centre[1] += grains.at("centre_y")[i];
+          centre[0] += ball.at("centre_x")[i];
+          centre[1] += ball.at("centre_y")[i];
           ++n_rows;
         }
     const double arm_x = centre[0] / n_rows - 0.5;
     const double arm_y = centre[1] / n_rows - 0.5;
     deallog << "rigid slab: ball centre over t in [1, 2] (" << arm_x + 0.5
             << ", " << arm_y + 0.5 << "), force / (0, 0, -weight) = "
-            << mean(times, walls.at("grain_1_force_x"), 1., 2.) / weight << ", "
-            << mean(times, walls.at("grain_1_force_y"), 1., 2.) / weight << ", "
-            << -mean(times, walls.at("grain_1_force_z"), 1., 2.) / weight
+            << time_mean(times, walls.at("grain_1_force_x"), 1., 2.) / weight
+            << ", "
+            << time_mean(times, walls.at("grain_1_force_y"), 1., 2.) / weight
+            << ", "
+            << -time_mean(times, walls.at("grain_1_force_z"), 1., 2.) / weight
             << "; torque / (-arm_y W, arm_x W, W) = "
-            << mean(times, walls.at("grain_1_torque_x"), 1., 2.) /
+            << time_mean(times, walls.at("grain_1_torque_x"), 1., 2.) /
                  (-arm_y * weight)
             << ", "
-            << mean(times, walls.at("grain_1_torque_y"), 1., 2.) /
+            << time_mean(times, walls.at("grain_1_torque_y"), 1., 2.) /
                  (arm_x * weight)
             << ", "
-            << mean(times, walls.at("grain_1_torque_z"), 1., 2.) / weight
-            << "; floor " << mean(times, walls.at("wall_z-_force_z"), 1., 2.)
+            << time_mean(times, walls.at("grain_1_torque_z"), 1., 2.) / weight
+            << "; floor "
+            << time_mean(times, walls.at("wall_z-_force_z"), 1., 2.)
             << std::endl;
   }
 
