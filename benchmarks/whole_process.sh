@@ -55,18 +55,30 @@ dt=$(awk 'BEGIN { E = 1000; nu = 0.3; rho = 1;
   c = sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho));
   printf "%.12g", 0.1 / '"$cells"' / c }')
 
-write_case_2d() { # NAME KERNEL
+# The block's dimension-dependent entries.
+if [ "$dim" = 3 ]; then
+  lower="0, 0, 0"; upper="1, 1, 1"; n_cells="$cells, $cells, $cells"
+  walls="x-: free slip, x+: free slip, y-: free slip, y+: free slip, z-: free slip, z+: free slip"
+  gravity="0, -1, 0"; physics=""
+  block="set Shape = box\n    set Centre = 0.5, 0.5, 0.5\n    set Size = 0.5, 0.5, 0.5\n    set Initial velocity = 0.1; 0; 0"
+else
+  lower="0, 0"; upper="1, 1"; n_cells="$cells, $cells"
+  walls="x-: free slip, x+: free slip, y-: free slip, y+: free slip"
+  gravity="0, -1"; physics="\n  set Two-dimensional model = plane strain"
+  block="set Shape = rectangle\n    set Centre = 0.5, 0.5\n    set Size = 0.5, 0.5\n    set Initial velocity = 0.1; 0"
+fi
+
+write_case() { # NAME KERNEL
   cat > "$work/$1.prm" <<EOF
-set Dimension = 2
+set Dimension = $dim
 subsection Background grid
-  set Lower corner        = 0, 0
-  set Upper corner        = 1, 1
-  set Number of cells     = $cells, $cells
-  set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip
+  set Lower corner        = $lower
+  set Upper corner        = $upper
+  set Number of cells     = $n_cells
+  set Boundary conditions = $walls
 end
 subsection Physics
-  set Gravity               = 0, -1
-  set Two-dimensional model = plane strain
+  set Gravity = $gravity$(printf '%b' "$physics")
 end
 subsection Materials
   subsection block
@@ -78,11 +90,8 @@ subsection Materials
 end
 subsection Grains
   subsection Grain 1
-    set Shape            = rectangle
-    set Centre           = 0.5, 0.5
-    set Size             = 0.5, 0.5
-    set Material         = block
-    set Initial velocity = 0.1; 0
+    $(printf '%b' "$block")
+    set Material = block
   end
 end
 subsection Material points
@@ -103,56 +112,6 @@ subsection Output
 end
 EOF
 }
-
-write_case_3d() { # NAME KERNEL
-  cat > "$work/$1.prm" <<EOF
-set Dimension = 3
-subsection Background grid
-  set Lower corner        = 0, 0, 0
-  set Upper corner        = 1, 1, 1
-  set Number of cells     = $cells, $cells, $cells
-  set Boundary conditions = x-: free slip, x+: free slip, y-: free slip, y+: free slip, z-: free slip, z+: free slip
-end
-subsection Physics
-  set Gravity = 0, -1, 0
-end
-subsection Materials
-  subsection block
-    set Constitutive model = linear elastic
-    set Density            = 1
-    set Young's modulus    = 1000
-    set Poisson's ratio    = 0.3
-  end
-end
-subsection Grains
-  subsection Grain 1
-    set Shape            = box
-    set Centre           = 0.5, 0.5, 0.5
-    set Size             = 0.5, 0.5, 0.5
-    set Material         = block
-    set Initial velocity = 0.1; 0; 0
-  end
-end
-subsection Material points
-  set Particles per cell = $per_dir
-  set Shape functions    = $2
-end
-subsection Time stepping
-  set Scheme                  = explicit leapfrog
-  set Stress update           = USF
-  set Time step               = $dt
-  set Maximum number of steps = $steps
-end
-subsection Output
-  set Output directory = $work/$1
-  set Output interval  = 1000
-  set Write particles  = false
-  set Write grid       = false
-end
-EOF
-}
-
-write_case() { write_case_"$dim"d "$@"; }
 
 # shellcheck source=common/summary.sh
 source benchmarks/common/summary.sh
