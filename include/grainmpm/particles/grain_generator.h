@@ -10,6 +10,8 @@
 
 #include <deal.II/base/function_parser.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <deal.II/particles/particle_handler.h>
 
 #include <memory>
@@ -104,13 +106,15 @@ namespace grainmpm
     /**
      * The properties of a new point of grain @p g at @p point with
      * @p volume: mass, volume, grain, initial velocity and stress, F = I.
-     * Returns what is wrong with the initial values there, or nothing.
+     * @p velocity is scratch space of size dim. Returns what is wrong with
+     * the initial values there, or nothing.
      */
     std::string
     point_properties(const unsigned int    g,
                      const GrainFunctions &functions,
                      const Point<dim>     &point,
                      const double          volume,
+                     Vector<double>       &velocity,
                      std::vector<double>  &properties) const;
 
     const Parameters<dim> &parameters;
