@@ -148,9 +148,14 @@ namespace grainmpm
           }
       }
     Utilities::MPI::sum(second, communicator, second);
-    for (auto &motion : motions)
-      motion.max_distance =
-        Utilities::MPI::max(motion.max_distance, communicator);
+    // One collective for all grains (not one per grain: an output of
+    // 10,000 grains would make 10,000 calls).
+    std::vector<double> max_distances(n_grains);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      max_distances[g] = motions[g].max_distance;
+    Utilities::MPI::max(max_distances, communicator, max_distances);
+    for (unsigned int g = 0; g < n_grains; ++g)
+      motions[g].max_distance = max_distances[g];
     for (unsigned int g = 0; g < n_grains; ++g)
       {
         const double *sum = &second[g * n_second];
