@@ -64,9 +64,14 @@ namespace grainmpm
     const ShapeFunctions                   shape_functions,
     const Tensor<1, dim>                  &half_width)
   {
+    const std::size_t n = particle_handler.n_locally_owned_particles();
+    // The entries count as changed unless the fill below finds each one as
+    // it was (nodes, first entries and fields, compared as they are
+    // written).
+    changed = update_cells(grid, particle_handler) || n != fields.size() ||
+              shape_functions != this->shape_functions || first_fill;
+    first_fill            = false;
     this->shape_functions = shape_functions;
-    update_cells(grid, particle_handler);
-    const std::size_t  n = particle_handler.n_locally_owned_particles();
     const unsigned int per_particle =
       shape_functions == ShapeFunctions::linear ? (1U << dim) :
                                                   max_nodes_per_particle;
@@ -75,6 +80,7 @@ namespace grainmpm
     first_entry.resize(n + 1);
     if (nodes.size() < n * per_particle)
       {
+        changed = true;
         nodes.resize(n * per_particle);
         shape_values.resize(n * per_particle);
         shape_gradients.resize(n * per_particle);
@@ -82,10 +88,12 @@ namespace grainmpm
       }
     fields.resize(n);
 
-    first_entry[n] =
+    const unsigned int n_entries =
       shape_functions == ShapeFunctions::linear ?
         fill_linear(grid, particle_handler, field_of_grain) :
         fill_gimp(grid, particle_handler, field_of_grain, half_width);
+    changed        = changed || first_entry[n] != n_entries;
+    first_entry[n] = n_entries;
   }
 
 
@@ -100,8 +108,9 @@ namespace grainmpm
     Tensor<1, dim> inverse_h;
     for (unsigned int d = 0; d < dim; ++d)
       inverse_h[d] = 1. / grid.cell_size()[d];
-    std::size_t  p     = 0;
-    unsigned int entry = 0;
+    std::size_t  p       = 0;
+    unsigned int entry   = 0;
+    bool         differs = false;
     // Loop over cells, then over the particles in each cell: the node
     // table entry is looked up once per cell.
     for_each_particle(
@@ -132,15 +141,20 @@ namespace grainmpm
                     derivative *= one_d_values[e][(v >> e) & 1U];
                 gradient[d] = derivative;
               }
+            differs |= nodes[entry] != cell_nodes[v];
             nodes[entry]           = cell_nodes[v];
             shape_values[entry]    = value;
             shape_gradients[entry] = gradient;
           }
-        fields[p] = field_of_grain[MaterialPointLayout<dim>::get_grain(
-          particle->get_properties())];
+        const unsigned int field =
+          field_of_grain[MaterialPointLayout<dim>::get_grain(
+            particle->get_properties())];
+        differs |= fields[p] != field;
+        fields[p] = field;
         ++p;
       });
     AssertDimension(p, particle_handler.n_locally_owned_particles());
+    changed = changed || differs;
     return entry;
   }
 
@@ -158,8 +172,9 @@ namespace grainmpm
     Tensor<1, dim> inverse_h;
     for (unsigned int d = 0; d < dim; ++d)
       inverse_h[d] = 1. / grid.cell_size()[d];
-    std::size_t  p     = 0;
-    unsigned int entry = 0;
+    std::size_t  p       = 0;
+    unsigned int entry   = 0;
+    bool         differs = false;
     // Half-widths in units of the cell size, at most half a cell so
     // that a particle touches at most 3 nodes per axis.
     Tensor<1, dim> initial_width;
@@ -213,6 +228,7 @@ namespace grainmpm
           }
         // Their tensor products, counting through the axes like an
         // odometer.
+        differs |= first_entry[p] != entry;
         first_entry[p]        = entry;
         unsigned int at[dim]  = {};
         bool         finished = false;
@@ -232,7 +248,9 @@ namespace grainmpm
                 gradient[d] = derivative;
               }
             AssertIndexRange(entry, nodes.size());
-            nodes[entry] = grid.lattice_node(position);
+            const unsigned int node = grid.lattice_node(position);
+            differs |= nodes[entry] != node;
+            nodes[entry] = node;
             Assert(nodes[entry] != numbers::invalid_unsigned_int,
                    ExcInternalError());
             shape_values[entry]    = value;
@@ -248,18 +266,21 @@ namespace grainmpm
               else
                 at[d] = 0;
           }
-        fields[p] =
+        const unsigned int field =
           field_of_grain[MaterialPointLayout<dim>::get_grain(properties)];
+        differs |= fields[p] != field;
+        fields[p] = field;
         ++p;
       });
     AssertDimension(p, particle_handler.n_locally_owned_particles());
+    changed = changed || differs;
     return entry;
   }
 
 
 
   template <int dim>
-  void
+  bool
   TransferCache<dim>::update_cells(
     const BackgroundGrid<dim>             &grid,
     const Particles::ParticleHandler<dim> &particle_handler)
@@ -295,7 +316,7 @@ namespace grainmpm
               }
         cells.erase(kept, cells.end());
         if (n_found == particle_handler.n_locally_owned_particles())
-          return;
+          return false;
       }
 
     cells.clear();
@@ -304,6 +325,7 @@ namespace grainmpm
           particle_handler.n_particles_in_cell(cell) > 0)
         cells.push_back(cell);
     cells_valid = true;
+    return true;
   }
 
 

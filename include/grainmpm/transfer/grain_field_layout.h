@@ -49,7 +49,8 @@ namespace grainmpm
      * Build the slots from the (node, field) pairs of @p cache on the nodes
      * of @p grid, exchanging those at ghost nodes with their owners, and
      * write the local slot of every (particle, vertex) pair into
-     * `cache.slots`. Collective.
+     * `cache.slots`. Collective. Keeps the slots (and `cache.slots`) while
+     * no rank's cache entries changed (TransferCache::entries_changed()).
      */
     void
     reinit(TransferCache<dim> &cache, const BackgroundGrid<dim> &grid);
@@ -185,6 +186,8 @@ namespace grainmpm
     unsigned int              n_owned_slots    = 0;
     unsigned int              n_owned_nodes    = 0;
     MPI_Comm                  mpi_communicator = MPI_COMM_SELF;
+    /** Whether reinit() has built the slots once. */
+    bool has_slots = false;
     /** This rank's first slot and its ghost slots' global numbers. */
     types::global_dof_index              partition_first_slot = 0;
     std::vector<types::global_dof_index> partition_ghost_slots;

@@ -105,6 +105,19 @@ namespace grainmpm
         }
     }
 
+    /**
+     * Whether the last reinit() changed the entries' nodes, the particles'
+     * first entries or their fields, found the cells again (at first and
+     * after a change of the triangulation), or saw another number of
+     * particles: the slots of GrainFieldLayout, a function of these, are
+     * kept while no rank's entries changed.
+     */
+    bool
+    entries_changed() const
+    {
+      return changed;
+    }
+
     /** Number of particles. */
     std::size_t
     n_particles() const
@@ -172,9 +185,9 @@ namespace grainmpm
      * is in one of them (a particle changes cells only when the particle
      * handler sorts, and a particle that entered a cell not in the list is
      * missing from the count) and the triangulation has not changed since;
-     * else loop over all cells.
+     * else loop over all cells. Returns whether the cells were found again.
      */
-    void
+    bool
     update_cells(const BackgroundGrid<dim>             &grid,
                  const Particles::ParticleHandler<dim> &particle_handler);
 
@@ -200,6 +213,12 @@ namespace grainmpm
               const Tensor<1, dim>                  &half_width);
 
     ShapeFunctions shape_functions = ShapeFunctions::linear;
+
+    /** See entries_changed(). */
+    bool changed = true;
+
+    /** True until the first reinit(). */
+    bool first_fill = true;
 
     /**
      * False when #cells must be found again: at first, and after every
