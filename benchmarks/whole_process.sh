@@ -50,68 +50,10 @@ work=$PWD/$build/benchmarks/whole_process
 mkdir -p "$work"
 mpirun=(mpirun --allow-run-as-root --oversubscribe)
 
-# The P-wave speed of the block material (plane strain) and dt = 0.1 h / c.
-dt=$(awk 'BEGIN { E = 1000; nu = 0.3; rho = 1;
-  c = sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho));
-  printf "%.12g", 0.1 / '"$cells"' / c }')
-
-# The block's dimension-dependent entries.
-if [ "$dim" = 3 ]; then
-  lower="0, 0, 0"; upper="1, 1, 1"; n_cells="$cells, $cells, $cells"
-  walls="x-: free slip, x+: free slip, y-: free slip, y+: free slip, z-: free slip, z+: free slip"
-  gravity="0, -1, 0"; physics=""
-  block="set Shape = box\n    set Centre = 0.5, 0.5, 0.5\n    set Size = 0.5, 0.5, 0.5\n    set Initial velocity = 0.1; 0; 0"
-else
-  lower="0, 0"; upper="1, 1"; n_cells="$cells, $cells"
-  walls="x-: free slip, x+: free slip, y-: free slip, y+: free slip"
-  gravity="0, -1"; physics="\n  set Two-dimensional model = plane strain"
-  block="set Shape = rectangle\n    set Centre = 0.5, 0.5\n    set Size = 0.5, 0.5\n    set Initial velocity = 0.1; 0"
-fi
-
-write_case() { # NAME KERNEL
-  cat > "$work/$1.prm" <<EOF
-set Dimension = $dim
-subsection Background grid
-  set Lower corner        = $lower
-  set Upper corner        = $upper
-  set Number of cells     = $n_cells
-  set Boundary conditions = $walls
-end
-subsection Physics
-  set Gravity = $gravity$(printf '%b' "$physics")
-end
-subsection Materials
-  subsection block
-    set Constitutive model = linear elastic
-    set Density            = 1
-    set Young's modulus    = 1000
-    set Poisson's ratio    = 0.3
-  end
-end
-subsection Grains
-  subsection Grain 1
-    $(printf '%b' "$block")
-    set Material = block
-  end
-end
-subsection Material points
-  set Particles per cell = $per_dir
-  set Shape functions    = $2
-end
-subsection Time stepping
-  set Scheme                  = explicit leapfrog
-  set Stress update           = USF
-  set Time step               = $dt
-  set Maximum number of steps = $steps
-end
-subsection Output
-  set Output directory = $work/$1
-  set Output interval  = 1000
-  set Write particles  = false
-  set Write grid       = false
-end
-EOF
-}
+# shellcheck source=common/block_case.sh
+source benchmarks/common/block_case.sh
+# write_case NAME KERNEL: the block with KERNEL, run into $work/NAME.
+write_case() { write_block_case "$work/$1.prm" "$dim" "$cells" "$per_dir" "$2" "$steps" "$work/$1"; }
 
 # shellcheck source=common/summary.sh
 source benchmarks/common/summary.sh
