@@ -398,10 +398,9 @@ namespace grainmpm
       static_cast<types::particle_index>(candidates.size()), communicator);
 
     // Scratch for the points, allocated once: an allocation per point
-    // between the insertions scatters the handler's per-cell particle
-    // lists over the heap, and every later visit of the points, cell by
-    // cell, pays for it (the explicit step of a 1M-point block: 224
-    // instead of 160 ns per point).
+    // between the insertions (which place the handler's per-cell particle
+    // lists on the heap) made every later step much slower
+    // (doc/notes/2026-11-28-step-regression-and-mpi-traffic.md).
     std::vector<double> properties(MaterialPointLayout<dim>::n_properties, 0.);
     Vector<double>      velocity(dim);
     std::string         not_finite; // the first one on this rank
