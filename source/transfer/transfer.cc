@@ -86,7 +86,9 @@ namespace grainmpm
                  particle_handler,
                  field_of_grain,
                  parameters.material_points.shape_functions,
-                 point_half_width());
+                 point_half_width(),
+                 !points_reordered);
+    points_reordered = false;
     layout.reinit(cache, grid);
   }
 

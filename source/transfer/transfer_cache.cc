@@ -62,7 +62,8 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler,
     const std::vector<unsigned int>       &field_of_grain,
     const ShapeFunctions                   shape_functions,
-    const Tensor<1, dim>                  &half_width)
+    const Tensor<1, dim>                  &half_width,
+    const bool                             same_points)
   {
     const std::size_t n = particle_handler.n_locally_owned_particles();
     // The entries count as changed unless the fill below finds each one as
@@ -88,10 +89,14 @@ namespace grainmpm
       }
     fields.resize(n);
 
+    // The fields are kept only if the points are those of the last fill,
+    // in the same order.
+    const bool         read_fields = changed || !same_points;
     const unsigned int n_entries =
       shape_functions == ShapeFunctions::linear ?
-        fill_linear(grid, particle_handler, field_of_grain) :
-        fill_gimp(grid, particle_handler, field_of_grain, half_width);
+        fill_linear(grid, particle_handler, field_of_grain, read_fields) :
+        fill_gimp(
+          grid, particle_handler, field_of_grain, half_width, read_fields);
     changed        = changed || first_entry[n] != n_entries;
     first_entry[n] = n_entries;
   }
@@ -103,7 +108,8 @@ namespace grainmpm
   TransferCache<dim>::fill_linear(
     const BackgroundGrid<dim>             &grid,
     const Particles::ParticleHandler<dim> &particle_handler,
-    const std::vector<unsigned int>       &field_of_grain)
+    const std::vector<unsigned int>       &field_of_grain,
+    const bool                             read_fields)
   {
     Tensor<1, dim> inverse_h;
     for (unsigned int d = 0; d < dim; ++d)
@@ -146,11 +152,14 @@ namespace grainmpm
             shape_values[entry]    = value;
             shape_gradients[entry] = gradient;
           }
-        const unsigned int field =
-          field_of_grain[MaterialPointLayout<dim>::get_grain(
-            particle->get_properties())];
-        differs |= fields[p] != field;
-        fields[p] = field;
+        if (read_fields)
+          {
+            const unsigned int field =
+              field_of_grain[MaterialPointLayout<dim>::get_grain(
+                particle->get_properties())];
+            differs |= fields[p] != field;
+            fields[p] = field;
+          }
         ++p;
       });
     AssertDimension(p, particle_handler.n_locally_owned_particles());
@@ -166,7 +175,8 @@ namespace grainmpm
     const BackgroundGrid<dim>             &grid,
     const Particles::ParticleHandler<dim> &particle_handler,
     const std::vector<unsigned int>       &field_of_grain,
-    const Tensor<1, dim>                  &half_width)
+    const Tensor<1, dim>                  &half_width,
+    const bool                             read_fields)
   {
     using Layout = MaterialPointLayout<dim>;
     Tensor<1, dim> inverse_h;
@@ -266,10 +276,13 @@ namespace grainmpm
               else
                 at[d] = 0;
           }
-        const unsigned int field =
-          field_of_grain[MaterialPointLayout<dim>::get_grain(properties)];
-        differs |= fields[p] != field;
-        fields[p] = field;
+        if (read_fields)
+          {
+            const unsigned int field =
+              field_of_grain[Layout::get_grain(properties)];
+            differs |= fields[p] != field;
+            fields[p] = field;
+          }
         ++p;
       });
     AssertDimension(p, particle_handler.n_locally_owned_particles());

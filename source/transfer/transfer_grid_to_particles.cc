@@ -36,7 +36,10 @@ namespace grainmpm
         statistics.events.sorted = true;
       }
     if (statistics.events.sorted)
-      particle_handler.sort_particles_into_subdomains_and_cells();
+      {
+        particle_handler.sort_particles_into_subdomains_and_cells();
+        points_reordered = true;
+      }
   }
 
 

@@ -75,14 +75,19 @@ namespace grainmpm
      * @p grid with the weights @p shape_functions. @p field_of_grain maps a
      * grain to its velocity field. @p half_width is the half-width l of a
      * particle's box in each direction at F = I (GIMP only; at most half a
-     * cell).
+     * cell). With @p same_points the caller vouches that the handler holds
+     * the same points in the same order as at the last reinit() (none
+     * inserted, removed or sorted into other cells since): each particle
+     * then keeps its field instead of reading its grain from its
+     * properties, which saves a pass over all point data.
      */
     void
     reinit(const BackgroundGrid<dim>             &grid,
            const Particles::ParticleHandler<dim> &particle_handler,
            const std::vector<unsigned int>       &field_of_grain,
            const ShapeFunctions  shape_functions = ShapeFunctions::linear,
-           const Tensor<1, dim> &half_width      = Tensor<1, dim>());
+           const Tensor<1, dim> &half_width      = Tensor<1, dim>(),
+           const bool            same_points     = false);
 
     /**
      * Call @p action(cell, particle) for every locally owned particle in
@@ -193,24 +198,28 @@ namespace grainmpm
 
     /**
      * Fill the entries of every particle for Q1 shape functions (the
-     * 2^dim vertices of its cell); returns the number of entries.
+     * 2^dim vertices of its cell), and its field if @p read_fields;
+     * returns the number of entries.
      */
     unsigned int
     fill_linear(const BackgroundGrid<dim>             &grid,
                 const Particles::ParticleHandler<dim> &particle_handler,
-                const std::vector<unsigned int>       &field_of_grain);
+                const std::vector<unsigned int>       &field_of_grain,
+                const bool                             read_fields);
 
     /**
      * Fill the entries of every particle for uGIMP or cpGIMP: per axis the
      * nodes with a positive weight for the particle's interval of
      * @p half_width (cpGIMP: stretched by F, at most half a cell), cut at
-     * the box, and their tensor products. Returns the number of entries.
+     * the box, and their tensor products, and the particle's field if
+     * @p read_fields. Returns the number of entries.
      */
     unsigned int
     fill_gimp(const BackgroundGrid<dim>             &grid,
               const Particles::ParticleHandler<dim> &particle_handler,
               const std::vector<unsigned int>       &field_of_grain,
-              const Tensor<1, dim>                  &half_width);
+              const Tensor<1, dim>                  &half_width,
+              const bool                             read_fields);
 
     ShapeFunctions shape_functions = ShapeFunctions::linear;
 
