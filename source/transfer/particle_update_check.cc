@@ -28,6 +28,9 @@ namespace grainmpm
     : parameters(parameters)
     , grid(grid)
     , options(options)
+    , cell_size(grid.cell_size())
+    , lower_corner(grid.lower_corner())
+    , upper_corner(grid.upper_corner())
   {}
 
 
@@ -81,13 +84,13 @@ namespace grainmpm
 
   template <int dim>
   std::string
-  ParticleUpdateCheck<dim>::leave_box(const types::particle_index id,
-                                      const unsigned int          grain,
-                                      const bool                  rigid,
-                                      Point<dim>                 &new_position,
-                                      const double                time,
-                                      types::particle_index &n_held_at_walls,
-                                      bool                  &removed) const
+  ParticleUpdateCheck<dim>::outside_box(const types::particle_index id,
+                                        const unsigned int          grain,
+                                        const bool                  rigid,
+                                        Point<dim>            &new_position,
+                                        const double           time,
+                                        types::particle_index &n_held_at_walls,
+                                        bool                  &removed) const
   {
     const Tensor<1, dim> &h     = grid.cell_size();
     const Point<dim>     &lower = grid.lower_corner();

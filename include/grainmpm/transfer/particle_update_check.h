@@ -57,7 +57,7 @@ namespace grainmpm
     {
       // A cheap test first (NaN fails every comparison): a finite velocity
       // and a move of at most a cell are fine.
-      const Tensor<1, dim> &h          = grid.cell_size();
+      const Tensor<1, dim> &h          = cell_size;
       bool                  suspicious = false;
       for (unsigned int d = 0; d < dim; ++d)
         suspicious =
@@ -86,9 +86,31 @@ namespace grainmpm
               Point<dim>                 &new_position,
               const double                time,
               types::particle_index      &n_held_at_walls,
-              bool                       &removed) const;
+              bool                       &removed) const
+    {
+      // Inside the box (the common case): nothing to do.
+      bool inside = true;
+      for (unsigned int d = 0; d < dim; ++d)
+        inside = inside && new_position[d] >= lower_corner[d] &&
+                 new_position[d] <= upper_corner[d];
+      removed = false;
+      if (inside)
+        return std::string();
+      return outside_box(
+        id, grain, rigid, new_position, time, n_held_at_walls, removed);
+    }
 
   private:
+    /** leave_box() for a point outside the box (or not finite). */
+    std::string
+    outside_box(const types::particle_index id,
+                const unsigned int          grain,
+                const bool                  rigid,
+                Point<dim>                 &new_position,
+                const double                time,
+                types::particle_index      &n_held_at_walls,
+                bool                       &removed) const;
+
     /** check() for a suspicious point: decides and writes the message. */
     std::string
     diagnose(const types::particle_index id,
@@ -102,6 +124,10 @@ namespace grainmpm
     const Parameters<dim>     &parameters;
     const BackgroundGrid<dim> &grid;
     const TransferOptions     &options;
+    /** The grid's cell size and box (fixed for a run). */
+    const Tensor<1, dim> cell_size;
+    const Point<dim>     lower_corner;
+    const Point<dim>     upper_corner;
   };
 } // namespace grainmpm
 
