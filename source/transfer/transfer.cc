@@ -86,9 +86,7 @@ namespace grainmpm
                  particle_handler,
                  field_of_grain,
                  parameters.material_points.shape_functions,
-                 point_half_width(),
-                 !points_reordered);
-    points_reordered = false;
+                 point_half_width());
     layout.reinit(cache, grid);
   }
 

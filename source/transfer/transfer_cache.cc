@@ -62,8 +62,7 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler,
     const std::vector<unsigned int>       &field_of_grain,
     const ShapeFunctions                   shape_functions,
-    const Tensor<1, dim>                  &half_width,
-    const bool                             same_points)
+    const Tensor<1, dim>                  &half_width)
   {
     const std::size_t n = particle_handler.n_locally_owned_particles();
     // The entries count as changed unless the fill below finds each one as
@@ -88,15 +87,15 @@ namespace grainmpm
         slots.resize(n * per_particle);
       }
     fields.resize(n);
+    ids.resize(n);
 
-    // The fields are kept only if the points are those of the last fill,
-    // in the same order.
-    const bool         read_fields = changed || !same_points;
+    // (With another number of points or other cells every field is read.)
+    const bool         read_all_fields = changed;
     const unsigned int n_entries =
       shape_functions == ShapeFunctions::linear ?
-        fill_linear(grid, particle_handler, field_of_grain, read_fields) :
+        fill_linear(grid, particle_handler, field_of_grain, read_all_fields) :
         fill_gimp(
-          grid, particle_handler, field_of_grain, half_width, read_fields);
+          grid, particle_handler, field_of_grain, half_width, read_all_fields);
     changed        = changed || first_entry[n] != n_entries;
     first_entry[n] = n_entries;
   }
@@ -109,7 +108,7 @@ namespace grainmpm
     const BackgroundGrid<dim>             &grid,
     const Particles::ParticleHandler<dim> &particle_handler,
     const std::vector<unsigned int>       &field_of_grain,
-    const bool                             read_fields)
+    const bool                             read_all_fields)
   {
     Tensor<1, dim> inverse_h;
     for (unsigned int d = 0; d < dim; ++d)
@@ -152,13 +151,17 @@ namespace grainmpm
             shape_values[entry]    = value;
             shape_gradients[entry] = gradient;
           }
-        if (read_fields)
+        // A point's grain never changes: the property memory is read only
+        // for a point new at this place.
+        if (const types::particle_index id = particle->get_id();
+            read_all_fields || ids[p] != id)
           {
             const unsigned int field =
               field_of_grain[MaterialPointLayout<dim>::get_grain(
                 particle->get_properties())];
             differs |= fields[p] != field;
             fields[p] = field;
+            ids[p]    = id;
           }
         ++p;
       });
@@ -176,7 +179,7 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler,
     const std::vector<unsigned int>       &field_of_grain,
     const Tensor<1, dim>                  &half_width,
-    const bool                             read_fields)
+    const bool                             read_all_fields)
   {
     using Layout = MaterialPointLayout<dim>;
     Tensor<1, dim> inverse_h;
@@ -276,12 +279,14 @@ namespace grainmpm
               else
                 at[d] = 0;
           }
-        if (read_fields)
+        if (const types::particle_index id = particle->get_id();
+            read_all_fields || ids[p] != id)
           {
             const unsigned int field =
               field_of_grain[Layout::get_grain(properties)];
             differs |= fields[p] != field;
             fields[p] = field;
+            ids[p]    = id;
           }
         ++p;
       });

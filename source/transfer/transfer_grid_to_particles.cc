@@ -36,10 +36,7 @@ namespace grainmpm
         statistics.events.sorted = true;
       }
     if (statistics.events.sorted)
-      {
-        particle_handler.sort_particles_into_subdomains_and_cells();
-        points_reordered = true;
-      }
+      particle_handler.sort_particles_into_subdomains_and_cells();
   }
 
 

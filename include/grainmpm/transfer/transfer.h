@@ -411,15 +411,6 @@ namespace grainmpm
 
     std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
       particles_to_remove;
-
-    /**
-     * Whether the handler's points may have changed or moved to other
-     * cells since the last reinit() (they were sorted or removed, or there
-     * was no reinit() yet): the cache then reads every point's grain again.
-     * (Changes of the triangulation make the cache find its cells again,
-     * which also reads them.)
-     */
-    bool points_reordered = true;
   };
 } // namespace grainmpm
 

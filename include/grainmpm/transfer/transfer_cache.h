@@ -75,19 +75,17 @@ namespace grainmpm
      * @p grid with the weights @p shape_functions. @p field_of_grain maps a
      * grain to its velocity field. @p half_width is the half-width l of a
      * particle's box in each direction at F = I (GIMP only; at most half a
-     * cell). With @p same_points the caller vouches that the handler holds
-     * the same points in the same order as at the last reinit() (none
-     * inserted, removed or sorted into other cells since): each particle
-     * then keeps its field instead of reading its grain from its
-     * properties, which saves a pass over all point data.
+     * cell). A particle at the same place in the order as at the last
+     * reinit() (the same id there) keeps its field: its grain is read from
+     * its properties only when it is new there, which saves a pass over
+     * all point data while the points keep their cells.
      */
     void
     reinit(const BackgroundGrid<dim>             &grid,
            const Particles::ParticleHandler<dim> &particle_handler,
            const std::vector<unsigned int>       &field_of_grain,
            const ShapeFunctions  shape_functions = ShapeFunctions::linear,
-           const Tensor<1, dim> &half_width      = Tensor<1, dim>(),
-           const bool            same_points     = false);
+           const Tensor<1, dim> &half_width      = Tensor<1, dim>());
 
     /**
      * Call @p action(cell, particle) for every locally owned particle in
@@ -175,6 +173,8 @@ namespace grainmpm
     std::vector<Tensor<1, dim>> shape_gradients;
     /** Velocity field of each particle. */
     std::vector<unsigned int> fields;
+    /** Id of each particle (whose field is in #fields). */
+    std::vector<types::particle_index> ids;
     /** Slot of each entry; set by GrainFieldLayout. */
     std::vector<unsigned int> slots;
 
@@ -198,28 +198,29 @@ namespace grainmpm
 
     /**
      * Fill the entries of every particle for Q1 shape functions (the
-     * 2^dim vertices of its cell), and its field if @p read_fields;
-     * returns the number of entries.
+     * 2^dim vertices of its cell), and its field if @p read_all_fields or
+     * its id differs from that at its place; returns the number of
+     * entries.
      */
     unsigned int
     fill_linear(const BackgroundGrid<dim>             &grid,
                 const Particles::ParticleHandler<dim> &particle_handler,
                 const std::vector<unsigned int>       &field_of_grain,
-                const bool                             read_fields);
+                const bool                             read_all_fields);
 
     /**
      * Fill the entries of every particle for uGIMP or cpGIMP: per axis the
      * nodes with a positive weight for the particle's interval of
      * @p half_width (cpGIMP: stretched by F, at most half a cell), cut at
-     * the box, and their tensor products, and the particle's field if
-     * @p read_fields. Returns the number of entries.
+     * the box, and their tensor products, and the particle's field as in
+     * fill_linear(). Returns the number of entries.
      */
     unsigned int
     fill_gimp(const BackgroundGrid<dim>             &grid,
               const Particles::ParticleHandler<dim> &particle_handler,
               const std::vector<unsigned int>       &field_of_grain,
               const Tensor<1, dim>                  &half_width,
-              const bool                             read_fields);
+              const bool                             read_all_fields);
 
     ShapeFunctions shape_functions = ShapeFunctions::linear;
 
