@@ -42,22 +42,22 @@ NEIGHBOURS = {2: 8, 3: 26}
 def parse(log):
     """Rows of the table by case: ranks -> list of per-rank figures."""
     cases = {}
-    current = None
+    name = None
     for line in log:
         fields = line.split()
         if len(fields) == 8 and fields[0] in DIMENSION:
             name, ranks = fields[0], int(fields[1])
-            current = {
+            row = {
                 "ms": float(fields[2]),
                 "messages": float(fields[4]),
                 "bytes": float(fields[5]),
                 "collectives": float(fields[6]),
             }
-            cases.setdefault(name, {}).setdefault(ranks, []).append(current)
+            cases.setdefault(name, {}).setdefault(ranks, []).append(row)
         match = re.match(r"points: (\d+), cells: (\d+)", line)
-        if match:
-            for ranks in cases[name].values():
-                for row in ranks:
+        if match and name is not None:
+            for rows in cases[name].values():
+                for row in rows:
                     row["points"] = int(match.group(1))
     return cases
 

@@ -68,9 +68,9 @@ namespace grainmpm
     // The entries count as changed unless the fill below finds each one as
     // it was (nodes, first entries and fields, compared as they are
     // written).
+    // (At first update_cells() finds the cells: changed.)
     changed = update_cells(grid, particle_handler) || n != fields.size() ||
-              shape_functions != this->shape_functions || first_fill;
-    first_fill            = false;
+              shape_functions != this->shape_functions;
     this->shape_functions = shape_functions;
     const unsigned int per_particle =
       shape_functions == ShapeFunctions::linear ? (1U << dim) :
@@ -89,13 +89,11 @@ namespace grainmpm
     fields.resize(n);
     ids.resize(n);
 
-    // (With another number of points or other cells every field is read.)
-    const bool         read_all_fields = changed;
+    // With another number of points or other cells every field is read.
     const unsigned int n_entries =
       shape_functions == ShapeFunctions::linear ?
-        fill_linear(grid, particle_handler, field_of_grain, read_all_fields) :
-        fill_gimp(
-          grid, particle_handler, field_of_grain, half_width, read_all_fields);
+        fill_linear(grid, particle_handler, field_of_grain, changed) :
+        fill_gimp(grid, particle_handler, field_of_grain, half_width, changed);
     changed        = changed || first_entry[n] != n_entries;
     first_entry[n] = n_entries;
   }

@@ -227,9 +227,6 @@ namespace grainmpm
     /** See entries_changed(). */
     bool changed = true;
 
-    /** True until the first reinit(). */
-    bool first_fill = true;
-
     /**
      * False when #cells must be found again: at first, and after every
      * change of the triangulation (refinement, repartitioning, loading),
