@@ -13,41 +13,83 @@ namespace grainmpm
   namespace
   {
     /**
+     * Phi(u) = int_-inf^u N on the two pieces of the hat, each exact at its
+     * ends (0 at u = -1, 1/2 at u = 0, 1 at u = 1) and so equal there to
+     * HatKernel::integral() and to each other.
+     */
+    inline double
+    rising_integral(const double u)
+    {
+      return 0.5 * (1. + u) * (1. + u);
+    }
+
+    inline double
+    falling_integral(const double u)
+    {
+      return 1. - 0.5 * (1. - u) * (1. - u);
+    }
+
+
+
+    /**
      * The GIMP weights along one axis, in units of the cell size: a
-     * particle whose interval is [a, b] (cut at the box faces) and the
-     * nodes at offsets -1, 0, 1, 2 from the lower vertex of its cell. Keeps
-     * the nodes with a positive weight: their offsets, values and
-     * derivatives (per unit of the cell size).
+     * particle whose interval is [a, b] (cut at the box faces; b - a <= 1
+     * and a < 1, b > 0, as the half-width is at most half a cell and the
+     * particle is in its cell) and the nodes at offsets -1, 0, 1, 2 from the
+     * lower vertex of its cell. Keeps the nodes with a positive weight:
+     * their offsets, values S = (Phi(b - o) - Phi(a - o)) / (b - a) and
+     * derivatives (N(b - o) - N(a - o)) / (b - a) (per unit of the cell
+     * size).
+     *
+     * The interval lies inside the cell, reaches below it (a < 0: nodes
+     * -1, 0, 1) or above it (b > 1: nodes 0, 1, 2), never both. In each
+     * case it is known on which piece of Phi every end falls, so Phi is
+     * evaluated without its tests (the same operations, the same values).
      */
     struct AxisWeights
     {
       unsigned int n = 0;
-      int          offsets[4];
-      double       values[4];
-      double       derivatives[4];
+      int          offsets[3];
+      double       values[3];
+      double       derivatives[3];
 
       void
-      compute(const double a, const double b)
+      compute(const double a, const double b, const double inverse_h)
       {
-        n                           = 0;
         const double inverse_length = 1. / (b - a);
-        // The nodes at offsets 0 and 1 always have weight; those at -1 and
-        // 2 only if the interval reaches over the cell's faces.
-        for (int offset = (a < 0. ? -1 : 0); offset <= (b > 1. ? 2 : 1);
-             ++offset)
+        n                           = 0;
+        const auto keep             = [&](const int    offset,
+                              const double phi_b,
+                              const double phi_a) {
+          const double value = (phi_b - phi_a) * inverse_length;
+          if (value > 0.)
+            {
+              offsets[n] = offset;
+              values[n]  = value;
+              derivatives[n] =
+                (HatKernel::value(b - offset) - HatKernel::value(a - offset)) *
+                inverse_length * inverse_h;
+              ++n;
+            }
+        };
+        if (a < 0.)
           {
-            const double value = (HatKernel::integral(b - offset) -
-                                  HatKernel::integral(a - offset)) *
-                                 inverse_length;
-            if (value > 0.)
-              {
-                offsets[n]     = offset;
-                values[n]      = value;
-                derivatives[n] = (HatKernel::value(b - offset) -
-                                  HatKernel::value(a - offset)) *
-                                 inverse_length;
-                ++n;
-              }
+            // b < 1: b + 1 is beyond the hat of node -1, a - 1 before that
+            // of node 1.
+            keep(-1, 1., falling_integral(a + 1.));
+            keep(0, falling_integral(b), rising_integral(a));
+            keep(1, rising_integral(b - 1.), 0.);
+          }
+        else if (b > 1.)
+          {
+            keep(0, 1., falling_integral(a));
+            keep(1, falling_integral(b - 1.), rising_integral(a - 1.));
+            keep(2, rising_integral(b - 2.), 0.);
+          }
+        else
+          {
+            keep(0, falling_integral(b), falling_integral(a));
+            keep(1, rising_integral(b - 1.), rising_integral(a - 1.));
           }
       }
     };
@@ -222,20 +264,17 @@ namespace grainmpm
         // Per axis the nodes with a positive weight: their values,
         // derivatives and parts of the lattice position.
         AxisWeights axes[dim];
-        std::size_t parts[dim][4];
+        std::size_t parts[dim][3];
         for (unsigned int d = 0; d < dim; ++d)
           {
             const double a = std::max(xi[d] - width[d], -1. * cell_index[d]);
             const double b =
               std::min(xi[d] + width[d],
                        static_cast<double>(n_cells[d]) - cell_index[d]);
-            axes[d].compute(a, b);
+            axes[d].compute(a, b, inverse_h[d]);
             for (unsigned int k = 0; k < axes[d].n; ++k)
-              {
-                axes[d].derivatives[k] *= inverse_h[d];
-                parts[d][k] =
-                  grid.lattice_part(d, cell_index[d] + axes[d].offsets[k]);
-              }
+              parts[d][k] =
+                grid.lattice_part(d, cell_index[d] + axes[d].offsets[k]);
           }
         // Their tensor products, counting through the axes like an
         // odometer.
