@@ -13,25 +13,6 @@ namespace grainmpm
   namespace
   {
     /**
-     * Phi(u) = int_-inf^u N on the two pieces of the hat, each exact at its
-     * ends (0 at u = -1, 1/2 at u = 0, 1 at u = 1) and so equal there to
-     * HatKernel::integral() and to each other.
-     */
-    inline double
-    rising_integral(const double u)
-    {
-      return 0.5 * (1. + u) * (1. + u);
-    }
-
-    inline double
-    falling_integral(const double u)
-    {
-      return 1. - 0.5 * (1. - u) * (1. - u);
-    }
-
-
-
-    /**
      * The GIMP weights along one axis, in units of the cell size: a
      * particle whose interval is [a, b] (cut at the box faces; b - a <= 1
      * and a < 1, b > 0, as the half-width is at most half a cell and the
@@ -43,8 +24,8 @@ namespace grainmpm
      *
      * The interval lies inside the cell, reaches below it (a < 0: nodes
      * -1, 0, 1) or above it (b > 1: nodes 0, 1, 2), never both. In each
-     * case it is known on which piece of Phi every end falls, so Phi is
-     * evaluated without its tests (the same operations, the same values).
+     * case it is known on which piece of Phi every end falls (or that it
+     * lies beyond the hat), so Phi is evaluated without tests.
      */
     struct AxisWeights
     {
@@ -56,6 +37,7 @@ namespace grainmpm
       void
       compute(const double a, const double b, const double inverse_h)
       {
+        Assert(b - a <= 1. + 1e-12 && !(a < 0. && b > 1.), ExcInternalError());
         const double inverse_length = 1. / (b - a);
         n                           = 0;
         const auto keep             = [&](const int    offset,
@@ -76,20 +58,28 @@ namespace grainmpm
           {
             // b < 1: b + 1 is beyond the hat of node -1, a - 1 before that
             // of node 1.
-            keep(-1, 1., falling_integral(a + 1.));
-            keep(0, falling_integral(b), rising_integral(a));
-            keep(1, rising_integral(b - 1.), 0.);
+            keep(-1, 1., HatKernel::falling_integral(a + 1.));
+            keep(0,
+                 HatKernel::falling_integral(b),
+                 HatKernel::rising_integral(a));
+            keep(1, HatKernel::rising_integral(b - 1.), 0.);
           }
         else if (b > 1.)
           {
-            keep(0, 1., falling_integral(a));
-            keep(1, falling_integral(b - 1.), rising_integral(a - 1.));
-            keep(2, rising_integral(b - 2.), 0.);
+            keep(0, 1., HatKernel::falling_integral(a));
+            keep(1,
+                 HatKernel::falling_integral(b - 1.),
+                 HatKernel::rising_integral(a - 1.));
+            keep(2, HatKernel::rising_integral(b - 2.), 0.);
           }
         else
           {
-            keep(0, falling_integral(b), falling_integral(a));
-            keep(1, rising_integral(b - 1.), rising_integral(a - 1.));
+            keep(0,
+                 HatKernel::falling_integral(b),
+                 HatKernel::falling_integral(a));
+            keep(1,
+                 HatKernel::rising_integral(b - 1.),
+                 HatKernel::rising_integral(a - 1.));
           }
       }
     };

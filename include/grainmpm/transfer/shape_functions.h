@@ -27,21 +27,27 @@ namespace grainmpm
       return std::max(0., 1. - std::abs(u));
     }
 
-    /** Phi(u), the integral of the hat from -infinity to u. */
+    /**
+     * Phi(u), the integral of the hat from -infinity to u, on its rising
+     * piece -1 <= u <= 0: (1 + u)^2 / 2. Phi is 0 below and 1 above the
+     * hat, and the two pieces meet at Phi(0) = 1/2; each is exact at its
+     * ends, so a caller that knows the piece of u needs no tests.
+     */
     inline double
-    integral(const double u)
+    rising_integral(const double u)
     {
-      if (u <= -1.)
-        return 0.;
-      if (u >= 1.)
-        return 1.;
-      if (u <= 0.)
-        return 0.5 * (1. + u) * (1. + u);
+      return 0.5 * (1. + u) * (1. + u);
+    }
+
+    /** Phi(u) on the falling piece 0 <= u <= 1: 1 - (1 - u)^2 / 2. */
+    inline double
+    falling_integral(const double u)
+    {
       return 1. - 0.5 * (1. - u) * (1. - u);
     }
 
     /**
-     * The inverse of integral() on [-1, 1]: the u with Phi(u) = @p phi
+     * The inverse of Phi on [-1, 1]: the u with Phi(u) = @p phi
      * (clamped to [0, 1]). A flat surface whose material fills the
      * fraction phi of a node's support lies at u = Phi^{-1}(phi) cells
      * along the normal.
