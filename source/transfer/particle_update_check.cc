@@ -92,9 +92,9 @@ namespace grainmpm
                                         types::particle_index &n_held_at_walls,
                                         bool                  &removed) const
   {
-    const Tensor<1, dim> &h     = grid.cell_size();
-    const Point<dim>     &lower = grid.lower_corner();
-    const Point<dim>     &upper = grid.upper_corner();
+    const Tensor<1, dim> &h     = cell_size;
+    const Point<dim>     &lower = lower_corner;
+    const Point<dim>     &upper = upper_corner;
     removed                     = false;
     for (unsigned int d = 0; d < dim; ++d)
       if (new_position[d] < lower[d] || new_position[d] > upper[d])

@@ -83,6 +83,36 @@ namespace grainmpm
           }
       }
     };
+
+
+
+    /**
+     * Bring the velocity field of the particle at place @p p of the fill
+     * order up to date. A point's grain never changes, so its property
+     * memory is read only if @p read_all_fields or another particle (by
+     * id) held place @p p at the last fill; @p differs records a change.
+     */
+    template <int dim, typename ParticleIteratorType>
+    inline void
+    update_field(const std::size_t                   p,
+                 const ParticleIteratorType         &particle,
+                 const std::vector<unsigned int>    &field_of_grain,
+                 const bool                          read_all_fields,
+                 std::vector<unsigned int>          &fields,
+                 std::vector<types::particle_index> &ids,
+                 bool                               &differs)
+    {
+      if (const types::particle_index id = particle->get_id();
+          read_all_fields || ids[p] != id)
+        {
+          const unsigned int field =
+            field_of_grain[MaterialPointLayout<dim>::get_grain(
+              particle->get_properties())];
+          differs |= fields[p] != field;
+          fields[p] = field;
+          ids[p]    = id;
+        }
+    }
   } // namespace
 
 
@@ -181,18 +211,8 @@ namespace grainmpm
             shape_values[entry]    = value;
             shape_gradients[entry] = gradient;
           }
-        // A point's grain never changes: the property memory is read only
-        // for a point new at this place.
-        if (const types::particle_index id = particle->get_id();
-            read_all_fields || ids[p] != id)
-          {
-            const unsigned int field =
-              field_of_grain[MaterialPointLayout<dim>::get_grain(
-                particle->get_properties())];
-            differs |= fields[p] != field;
-            fields[p] = field;
-            ids[p]    = id;
-          }
+        update_field<dim>(
+          p, particle, field_of_grain, read_all_fields, fields, ids, differs);
         ++p;
       });
     AssertDimension(p, particle_handler.n_locally_owned_particles());
@@ -238,13 +258,12 @@ namespace grainmpm
           }
         // The particle's interval per axis in cell units, cut at the
         // box.
-        const Point<dim> xi         = particle->get_reference_location();
-        const auto       properties = particle->get_properties();
-        Tensor<1, dim>   width      = initial_width;
+        const Point<dim> xi    = particle->get_reference_location();
+        Tensor<1, dim>   width = initial_width;
         if (shape_functions == ShapeFunctions::cpgimp)
           {
             const Tensor<2, dim> F =
-              Layout::get_deformation_gradient(properties);
+              Layout::get_deformation_gradient(particle->get_properties());
             // Half-width along axis d: l_0 sqrt((F F^T)_dd), the length
             // of row d of F, unchanged by rotations; kept above 1e-6
             // cells so that (Phi(b) - Phi(a)) / (b - a) stays accurate.
@@ -306,15 +325,8 @@ namespace grainmpm
               else
                 at[d] = 0;
           }
-        if (const types::particle_index id = particle->get_id();
-            read_all_fields || ids[p] != id)
-          {
-            const unsigned int field =
-              field_of_grain[Layout::get_grain(properties)];
-            differs |= fields[p] != field;
-            fields[p] = field;
-            ids[p]    = id;
-          }
+        update_field<dim>(
+          p, particle, field_of_grain, read_all_fields, fields, ids, differs);
         ++p;
       });
     AssertDimension(p, particle_handler.n_locally_owned_particles());
