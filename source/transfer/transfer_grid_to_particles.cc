@@ -210,37 +210,36 @@ namespace grainmpm
         Point<dim>         new_position;
         Tensor<1, dim>     new_velocity;
         // Rigid grains follow their prescribed velocity (midpoint rule); a
-        // deformable point is checked (ParticleUpdateCheck::check()).
-        std::string failure;
-        if (rigid)
-          failure = rigid_motion.move_point(grain,
-                                            particle->get_id(),
-                                            old_position,
-                                            time,
-                                            dt,
-                                            new_position,
-                                            new_velocity);
-        else
-          {
-            update_deformable(p,
-                              properties,
-                              old_position,
-                              velocities_new.begin(),
-                              velocities_p2g.begin(),
-                              position_velocities.begin(),
-                              dt,
-                              new_position,
-                              new_velocity,
-                              particle_kinetic_change,
-                              particle_increment_energy);
-            failure = update_check.check(particle->get_id(),
-                                         grain,
-                                         old_position,
-                                         new_position,
-                                         new_velocity,
-                                         time,
-                                         dt);
-          }
+        // deformable point is checked (ParticleUpdateCheck::check()). (The
+        // messages are initialised, not assigned: an empty string per point
+        // costs nothing then.)
+        if (!rigid)
+          update_deformable(p,
+                            properties,
+                            old_position,
+                            velocities_new.begin(),
+                            velocities_p2g.begin(),
+                            position_velocities.begin(),
+                            dt,
+                            new_position,
+                            new_velocity,
+                            particle_kinetic_change,
+                            particle_increment_energy);
+        std::string failure = rigid ?
+                                rigid_motion.move_point(grain,
+                                                        particle->get_id(),
+                                                        old_position,
+                                                        time,
+                                                        dt,
+                                                        new_position,
+                                                        new_velocity) :
+                                update_check.check(particle->get_id(),
+                                                   grain,
+                                                   old_position,
+                                                   new_position,
+                                                   new_velocity,
+                                                   time,
+                                                   dt);
         if (!failure.empty())
           {
             // A prescribed velocity that is not finite is the cause of any
@@ -254,20 +253,21 @@ namespace grainmpm
         max_speed_square =
           std::max(max_speed_square, new_velocity.norm_square());
 
-        bool removed = false;
-        failure      = update_check.leave_box(particle->get_id(),
-                                         grain,
-                                         rigid,
-                                         new_position,
-                                         time + dt,
-                                         statistics.events.n_held_at_walls,
-                                         removed);
-        if (!failure.empty() || removed)
+        bool              removed = false;
+        const std::string box_failure =
+          update_check.leave_box(particle->get_id(),
+                                 grain,
+                                 rigid,
+                                 new_position,
+                                 time + dt,
+                                 statistics.events.n_held_at_walls,
+                                 removed);
+        if (!box_failure.empty() || removed)
           {
             if (removed)
               particles_to_remove.push_back(particle);
             else if (error.empty())
-              error = failure;
+              error = box_failure;
             return;
           }
 
