@@ -329,8 +329,9 @@ namespace grainmpm
                               particle_handler);
     summary.add_energies(current);
     // Energy created by the implicit steps (the balance residual above a
-    // tenth of the energy reference) is said once, with the levers.
-    const double created = summary.relative_balance();
+    // tenth of the energy reference, or of the boundary work if that is
+    // larger) is said once, with the levers.
+    const double created = summary.created_energy_fraction();
     if (implicit && !creation_noted && created > 0.1)
       {
         creation_noted = true;
@@ -338,7 +339,8 @@ namespace grainmpm
               << " the implicit steps have created energy: the balance "
                  "residual is +"
               << created
-              << " of the energy reference. A loose Nonlinear "
+              << " of the energy reference (or of the boundary work, if "
+                 "larger). A loose Nonlinear "
                  "solver/Tolerance leaves errors that work like forces, and "
                  "at Time stepping/Theta = 0.5 (here "
               << parameters.time_stepping.theta

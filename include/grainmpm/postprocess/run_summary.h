@@ -10,6 +10,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -134,6 +136,20 @@ namespace grainmpm
     {
       return ledger.balance(current_energy, initial_energy) /
              energy_reference();
+    }
+
+    /**
+     * The balance residual now over the larger of the energy reference and
+     * the work the walls and rigid grains have done so far: the energy the
+     * steps created, against what the run holds or has been given. (A
+     * packing loaded from rest has a tiny energy reference at its first
+     * contacts, where the relative balance alone says nothing.)
+     */
+    double
+    created_energy_fraction() const
+    {
+      return ledger.balance(current_energy, initial_energy) /
+             std::max(energy_reference(), std::abs(ledger.boundary_work));
     }
 
     /**
