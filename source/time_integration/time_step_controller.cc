@@ -60,11 +60,25 @@ namespace grainmpm
 
 
   double
-  TimeStepController::cfl_step(const double max_speed) const
+  nominal_time_step(const TimeSteppingParameters &parameters,
+                    const double                  minimum_cell_size,
+                    const double                  wave_speed,
+                    const double                  max_speed)
   {
     if (parameters.time_step > 0.)
       return parameters.time_step;
     return parameters.cfl_number * minimum_cell_size / (wave_speed + max_speed);
+  }
+
+
+
+  double
+  TimeStepController::cfl_step(const double max_speed) const
+  {
+    return nominal_time_step(parameters,
+                             minimum_cell_size,
+                             wave_speed,
+                             max_speed);
   }
 
 
@@ -109,13 +123,15 @@ namespace grainmpm
                              const unsigned int newton_iterations)
   {
     // A cut step grows back by min(2, N_t / N), N_t half the Newton
-    // iterations allowed, after Steps before growth easy steps (N <= N_t).
+    // iterations allowed, after Steps before growth easy steps (N <= N_t);
+    // with a Maximum time step any step grows so (next_step() bounds it).
     // (Shrinking the next step after a hard one, N > N_t, was tried: where
     // N does not fall with dt, e.g. at most 3 iterations allowed and 2 or 3
     // needed, it shrank the step without end.)
-    const double target = 0.5 * max_newton_iterations;
-    const double n      = std::max(1U, newton_iterations);
-    if (step_limit > 0. && n <= target)
+    const double target  = 0.5 * max_newton_iterations;
+    const double n       = std::max(1U, newton_iterations);
+    const bool   growing = step_limit > 0. || parameters.maximum_time_step > 0.;
+    if (growing && n <= target)
       {
         if (++easy_steps >= parameters.steps_before_growth)
           {
@@ -130,13 +146,34 @@ namespace grainmpm
 
 
   double
+  TimeStepController::largest_step(const double nominal,
+                                   const double max_speed) const
+  {
+    if (!(parameters.maximum_time_step > nominal))
+      return nominal;
+    double largest = parameters.maximum_time_step;
+    if (parameters.maximum_displacement > 0. && max_speed > 0.)
+      largest = std::min(largest,
+                         parameters.maximum_displacement * minimum_cell_size /
+                           max_speed);
+    return std::max(largest, nominal);
+  }
+
+
+
+  double
   TimeStepController::next_step(const double max_speed)
   {
-    double step = cfl_step(max_speed);
-    if (step_limit > 0. && step_limit < step)
-      step = step_limit;
-    else
-      step_limit = 0.;
-    return step;
+    const double nominal = cfl_step(max_speed);
+    if (step_limit == 0.)
+      return nominal;
+    const double largest = largest_step(nominal, max_speed);
+    if (step_limit < largest)
+      return step_limit;
+    // At the largest step a cut step has grown back; a grown one is held
+    // there, so that it grows again from it, not from a step the bounds
+    // no longer allow.
+    step_limit = largest > nominal ? largest : 0.;
+    return largest;
   }
 } // namespace grainmpm

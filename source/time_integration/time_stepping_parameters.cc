@@ -76,6 +76,45 @@ namespace grainmpm
       "Dimensionless.",
       Patterns::Integer(1));
     prm.add_parameter(
+      "Maximum time step",
+      maximum_time_step,
+      "Implicit scheme with Adaptive time stepping: the steps grow beyond "
+      "the step of Time step or CFL number (the nominal step), up to this "
+      "value, by the same rule as a cut step grows back (min(2, N_t / N) "
+      "after Steps before growth easy steps), as long as no material point "
+      "moves more than Maximum displacement per step in a step. A step "
+      "that fails is halved as usual. For slow, quasi-static loading, "
+      "where the nominal step of the wave speed is far smaller than what "
+      "the loading needs (doc/theory.md). Zero means the nominal step is "
+      "the largest. Units: time.",
+      Patterns::Double(0.));
+    prm.add_parameter(
+      "Maximum displacement per step",
+      maximum_displacement,
+      "Implicit scheme, steps grown beyond the nominal step (Maximum time "
+      "step): no step is larger than this fraction of the smallest cell "
+      "size divided by the largest speed of the material points at the "
+      "end of the previous step, so that the steps shrink again, though "
+      "never below the nominal step, while grains move fast (a slip, an "
+      "impact, a grain falling). Zero means no such limit. Dimensionless.",
+      Patterns::Double(0.));
+    prm.add_parameter(
+      "Energy error per step",
+      energy_error,
+      "Implicit scheme with Maximum time step: a step longer than the "
+      "nominal one (that of Time step, or of CFL number with the material "
+      "at rest) whose grid step creates more energy than this fraction of "
+      "the grid energy (the "
+      "change of the kinetic plus elastic energy of the deformable grains "
+      "on the grid, plus the friction and plastic work, minus the work of "
+      "rigid grains and walls; theta = 1/2 conserves it for elastic motion "
+      "with contact that holds) is rejected and retried with half the "
+      "step, as a step whose Newton solve fails. Large steps over a change "
+      "of the contacts can create energy that the Newton tolerance does not "
+      "see; this check makes the steps shrink there. Zero means no such "
+      "check. Dimensionless.",
+      Patterns::Double(0.));
+    prm.add_parameter(
       "Explicit fallback",
       explicit_fallback,
       "Implicit scheme with Adaptive time stepping: a step whose Newton "
@@ -210,6 +249,29 @@ namespace grainmpm
                        "set Scheme = implicit theta.");
     if (mass_matrix == MassMatrixType::lumped)
       consistent_mass_fraction = 0.;
+    if (maximum_time_step > 0. &&
+        (scheme != TimeSteppingScheme::implicit_theta ||
+         !adaptive_time_stepping))
+      {
+        std::ostringstream entry;
+        entry << "Time stepping/Maximum time step = " << maximum_time_step;
+        throw InputError(entry.str(),
+                         "applies to the implicit scheme with Adaptive "
+                         "time stepping = true only: the explicit leapfrog "
+                         "is bound to its stable step, and without adaptive "
+                         "steps the step is fixed. Remove the entry, or set "
+                         "Scheme = implicit theta and Adaptive time stepping "
+                         "= true.");
+      }
+    if (maximum_time_step > 0. && maximum_time_step < time_step)
+      {
+        std::ostringstream entry, message;
+        entry << "Time stepping/Maximum time step = " << maximum_time_step;
+        message << "is below Time step = " << time_step
+                << ", the step it lets grow. Set it above the time step, or "
+                   "to 0 for no growth.";
+        throw InputError(entry.str(), message.str());
+      }
     if (time_step == 0. && cfl_number == 0.)
       throw InputError("Time stepping/CFL number",
                        "must be positive when Time step is zero.");

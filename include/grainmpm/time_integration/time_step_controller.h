@@ -11,13 +11,30 @@
 namespace grainmpm
 {
   /**
+   * The nominal step of @p parameters: the fixed `Time step`, or
+   * dt = CFL h / (c + |v|_max) with @p minimum_cell_size h, @p wave_speed c
+   * (the largest dilatational wave speed) and @p max_speed |v|_max.
+   */
+  double
+  nominal_time_step(const TimeSteppingParameters &parameters,
+                    const double                  minimum_cell_size,
+                    const double                  wave_speed,
+                    const double                  max_speed);
+
+
+
+  /**
    * The size of the time steps: from the CFL condition
    * dt = CFL h_min / (c_max + |v|_max) or the fixed `Time step`, and the
    * failure policy of the implicit scheme: a rejected step is retried with
    * half the step (down to `Minimum time step`), and a cut step grows
    * back by min(2, N_t / N) after `Steps before growth` consecutive easy
    * steps, N the Newton iterations of the step and N_t half of those
-   * allowed (easy: N <= N_t). Its state is written to checkpoints by
+   * allowed (easy: N <= N_t). With `Maximum time step` above the nominal
+   * step (that of `Time step` or `CFL number`) the steps go on growing by
+   * the same rule beyond it, up to that maximum and to the step in which
+   * the fastest point moves `Maximum displacement per step` cells (never
+   * below the nominal step). Its state is written to checkpoints by
    * serialize(). A case whose End time needs more than
    * maximum_steps_to_end steps is refused when the controller is made.
    */
@@ -78,7 +95,8 @@ namespace grainmpm
     /**
      * The step after an accepted one in which particles moved at most at
      * @p max_speed: the CFL (or fixed) step, limited by a cut step as long
-     * as that is smaller.
+     * as that is smaller; with growth beyond it, the grown step, limited
+     * by the largest step and the displacement bound.
      */
     double
     next_step(const double max_speed);
@@ -112,13 +130,22 @@ namespace grainmpm
     double
     cfl_step(const double max_speed) const;
 
+    /**
+     * The largest step after one in which particles moved at most at
+     * @p max_speed, given the nominal step @p nominal: @p nominal without
+     * growth, else the maximum time step and the displacement bound, not
+     * below @p nominal.
+     */
+    double
+    largest_step(const double nominal, const double max_speed) const;
+
     const TimeSteppingParameters &parameters;
     const unsigned int            max_newton_iterations;
     const double                  minimum_cell_size;
     const double                  wave_speed;
 
     double minimum_step = 0.;
-    /** A cut step (0 if none). */
+    /** A cut or grown step (0 if none). */
     double       step_limit    = 0.;
     unsigned int easy_steps    = 0;
     double       smallest_step = std::numeric_limits<double>::max();

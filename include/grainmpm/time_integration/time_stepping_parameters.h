@@ -71,6 +71,22 @@ namespace grainmpm
     /** Consecutive easy steps before dt is doubled back. */
     unsigned int steps_before_growth = 2;
     /**
+     * Largest step the implicit steps may grow to beyond the step of
+     * `Time step` or `CFL number` (0: no growth beyond it).
+     */
+    double maximum_time_step = 0.;
+    /**
+     * Largest displacement of a material point in a step grown beyond the
+     * nominal one, as a fraction of the smallest cell size.
+     */
+    double maximum_displacement = 0.1;
+    /**
+     * With growth beyond the nominal step: the largest energy an implicit
+     * step may create, as a fraction of the grid energy, before it is
+     * rejected (0: no such check).
+     */
+    double energy_error = 1e-3;
+    /**
      * Advance a step that the implicit solve cannot take at the explicit
      * stable step by explicit leapfrog sub-steps.
      */

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// The jammed stack of the implicit contact tests: nine disks (R = 0.1,
+// 6.4 cells per radius) stacked three by three on the floor, against the
+// left wall and touching each other, Coulomb friction 0.3, compressed by a
+// rigid platen (grain 10) that starts 0.2 cells above the top row and
+// moves down at V = 0.037 (V / c = 1e-3) to t = 0.3 (0.7 cells of travel).
+
+#ifndef grainmpm_tests_implicit_jammed_stack_h
+#define grainmpm_tests_implicit_jammed_stack_h
+
+#include <sstream>
+#include <string>
+
+/**
+ * The parameter text of the stack, with @p time_stepping (lines of the
+ * subsection Time stepping) added.
+ */
+inline std::string
+stack_case(const std::string &time_stepping)
+{
+  std::ostringstream prm;
+  prm << "set Dimension = 2\n"
+      << "subsection Background grid\n"
+      << "  set Lower corner = 0, 0\n  set Upper corner = 0.625, 0.75\n"
+      << "  set Number of cells = 40, 48\n"
+      << "  set Boundary conditions = x-: free slip, x+: free slip, "
+      << "y-: free slip, y+: open\nend\n"
+      << "subsection Physics\n  set Gravity = 0, 0\nend\n"
+      << "subsection Materials\n  subsection elastic\n"
+      << "    set Constitutive model = linear elastic\n"
+      << "    set Density = 1\n    set Young's modulus = 1000\n"
+      << "    set Poisson's ratio = 0.3\n  end\nend\n"
+      << "subsection Grains\n";
+  unsigned int k = 0;
+  for (const double y : {0.1, 0.3, 0.5})
+    for (const double x : {0.1, 0.3, 0.5})
+      prm << "  subsection Disk " << ++k << "\n    set Shape = disk\n"
+          << "    set Centre = " << x << ", " << y << "\n"
+          << "    set Radius = 0.1\n    set Material = elastic\n  end\n";
+  prm << "  subsection Platen\n    set Shape = rectangle\n"
+      << "    set Centre = 0.3125, 0.633125\n    set Size = 0.625, 0.06\n"
+      << "    set Material = elastic\n    set Rigid = true\n"
+      << "    set Prescribed velocity = 0; -0.037\n  end\nend\n"
+      << "subsection Contact\n  set Contact model = Coulomb friction\n"
+      << "  set Friction coefficient = 0.3\nend\n"
+      << "subsection Time stepping\n  set End time = 0.3\n"
+      << time_stepping << "end\n"
+      << "subsection Linear solver\n  set Preconditioner = AMG\nend\n";
+  return prm.str();
+}
+
+#endif
