@@ -2,10 +2,14 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/time_integration/implicit_theta.h>
+#include <grainmpm/time_integration/time_step_controller.h>
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <iostream>
+#include <sstream>
+#include <string>
 
 namespace grainmpm
 {
@@ -51,6 +55,10 @@ namespace grainmpm
               grid,
               transfer.get_rigid_motion(),
               transfer.get_field_is_rigid())
+    , grown_step(nominal_time_step(parameters.time_stepping,
+                                   grid.minimum_cell_size(),
+                                   largest_wave_speed(grains, materials),
+                                   0.))
     , residual(contact, grid, materials)
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
@@ -172,6 +180,19 @@ namespace grainmpm
       mass_matrix.local_kinetic_energy(state.velocities_p2g);
     const double kinetic_new =
       mass_matrix.local_kinetic_energy(state.velocities_new);
+    if (const std::string failure = energy_error(particle_handler,
+                                                 kinetic_old,
+                                                 kinetic_new,
+                                                 friction_work - boundary_work,
+                                                 dt);
+        !failure.empty())
+      {
+        statistics.solver.converged = false;
+        statistics.solver.failure   = failure;
+        statistics.solver.residual_evaluations =
+          residual.n_residual_evaluations() - evaluations_at_start;
+        return statistics;
+      }
     double energies[4] = {kinetic_old, kinetic_new, 0., 0.};
     energies[2]        = residual.old_strain_energy();
     transfer.update_particle_states(particle_handler,
@@ -199,6 +220,48 @@ namespace grainmpm
     statistics.solver.residual_evaluations =
       residual.n_residual_evaluations() - evaluations_at_start;
     return statistics;
+  }
+
+
+
+  template <int dim>
+  std::string
+  ImplicitTheta<dim>::energy_error(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const double                     kinetic_old,
+    const double                     kinetic_new,
+    const double                     constraint_work,
+    const double                     dt) const
+  {
+    const TimeSteppingParameters &stepping = parameters.time_stepping;
+    if (!(stepping.maximum_time_step > 0. && stepping.energy_error > 0. &&
+          dt > grown_step))
+      return "";
+    // The grid step's share of the energy balance, as the ledger books it
+    // after the step (theory section 14), from a trial constitutive update.
+    double energies[5] = {kinetic_old,
+                          kinetic_new,
+                          residual.old_strain_energy(),
+                          0.,
+                          constraint_work};
+    energies[3]        = transfer.trial_strain_energy(particle_handler,
+                                               theta_velocities,
+                                               dt,
+                                               energies[4]);
+    Utilities::MPI::sum(ArrayView<const double>(energies, 5),
+                        transfer.get_layout().get_communicator(),
+                        ArrayView<double>(energies, 5));
+    const double before  = energies[0] + energies[2];
+    const double after   = energies[1] + energies[3];
+    const double created = after - before + energies[4];
+    if (!(created > stepping.energy_error * std::max(before, after)))
+      return "";
+    std::ostringstream message;
+    message << "the step created " << created / std::max(before, after)
+            << " of the grid energy, more than Time stepping/Energy error "
+               "per step = "
+            << stepping.energy_error;
+    return message.str();
   }
 
 

@@ -39,6 +39,23 @@ namespace grainmpm
 
 
 
+    /**
+     * The volume store_particle_state() would give the particle with
+     * @p properties, without storing anything.
+     */
+    template <int dim>
+    double
+    trial_volume(const ArrayView<double> &properties,
+                 const Tensor<2, dim>    &increment)
+    {
+      using Layout           = MaterialPointLayout<dim>;
+      const Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
+      return determinant(F + increment * F) *
+             properties[Layout::initial_volume];
+    }
+
+
+
   } // namespace
 
 
@@ -264,6 +281,28 @@ namespace grainmpm
 
 
   template <int dim>
+  double
+  Transfer<dim>::trial_strain_energy(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                &velocities,
+    const double                     dt,
+    double                          &plastic_work) const
+  {
+    double strain_energy = 0.;
+    update_states(particle_handler,
+                  velocities,
+                  dt,
+                  plastic_work,
+                  &strain_energy,
+                  Tensor<1, dim>(),
+                  nullptr,
+                  false);
+    return strain_energy;
+  }
+
+
+
+  template <int dim>
   void
   Transfer<dim>::update_particle_states_and_forces(
     Particles::ParticleHandler<dim> &particle_handler,
@@ -295,7 +334,8 @@ namespace grainmpm
     double                          &plastic_work,
     double                          *strain_energy,
     const Tensor<1, dim>            &gravity,
-    VectorType                      *forces) const
+    VectorType                      *forces,
+    const bool                       store) const
   {
     using Layout = MaterialPointLayout<dim>;
     velocities.update_ghost_values();
@@ -320,8 +360,11 @@ namespace grainmpm
           model.update_stress(Layout::get_stress(properties),
                               increment,
                               plastic_strain);
-        const double volume =
-          store_particle_state(properties, stress, plastic_strain, increment);
+        const double volume = store ? store_particle_state(properties,
+                                                           stress,
+                                                           plastic_strain,
+                                                           increment) :
+                                      trial_volume<dim>(properties, increment);
         if (strain_energy != nullptr)
           *strain_energy += volume * model.strain_energy_density(stress);
         plastic_work +=

@@ -114,11 +114,31 @@ namespace grainmpm
     }
 
   private:
+    /**
+     * With `Time stepping/Maximum time step`: why the converged step, if
+     * longer than grown_step, is rejected for the energy its grid step
+     * creates (`Energy error per step`), or an empty string. @p kinetic_old and @p kinetic_new are
+     * the local grid kinetic energies, @p constraint_work the local
+     * friction less boundary work of the step; the new elastic energy
+     * comes from a trial constitutive update with the theta velocities.
+     */
+    std::string
+    energy_error(Particles::ParticleHandler<dim> &particle_handler,
+                 const double                     kinetic_old,
+                 const double                     kinetic_new,
+                 const double                     constraint_work,
+                 const double                     dt) const;
+
     const Parameters<dim> &parameters;
     Transfer<dim>          transfer;
     GrainContact<dim>      contact;
-    GridState<dim>         state;
-    MassMatrix<dim>        mass_matrix;
+    /**
+     * Steps longer than this have grown beyond the nominal step (that of
+     * the material at rest), and their energy is checked.
+     */
+    const double    grown_step;
+    GridState<dim>  state;
+    MassMatrix<dim> mass_matrix;
 
     ThetaResidual<dim>        residual;
     NewtonKrylovSolver        solver;

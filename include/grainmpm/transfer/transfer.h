@@ -229,6 +229,17 @@ namespace grainmpm
                            double *strain_energy = nullptr) const;
 
     /**
+     * The local elastic energy sum V W(sigma) that update_particle_states()
+     * would give the deformable particles, and its plastic work added to
+     * @p plastic_work, without changing the particles.
+     */
+    double
+    trial_strain_energy(Particles::ParticleHandler<dim> &particle_handler,
+                        const VectorType                &velocities,
+                        const double                     dt,
+                        double                          &plastic_work) const;
+
+    /**
      * update_particle_states() and compute_forces() in one pass over the
      * particles: the forces of the new stresses and volumes (the
      * update-stress-first order of the explicit scheme).
@@ -320,7 +331,8 @@ namespace grainmpm
 
     /**
      * The loop of update_particle_states(), adding the forces to
-     * @p forces (dim per local slot) if it is given.
+     * @p forces (dim per local slot) if it is given; with @p store false
+     * the particles keep their state (trial_strain_energy()).
      */
     void
     update_states(Particles::ParticleHandler<dim> &particle_handler,
@@ -329,7 +341,8 @@ namespace grainmpm
                   double                          &plastic_work,
                   double                          *strain_energy,
                   const Tensor<1, dim>            &gravity,
-                  VectorType                      *forces) const;
+                  VectorType                      *forces,
+                  const bool                       store = true) const;
 
     /**
      * The FLIP/PIC update of the deformable particle @p p (cache order)
