@@ -19,49 +19,13 @@
 #include <grainmpm/simulator.h>
 
 #include <cmath>
-#include <sstream>
 
 #include "../tests.h"
 
 #include "../energy_csv.h"
+#include "jammed_stack.h"
 
 using namespace grainmpm;
-
-std::string
-stack_case(const std::string &time_stepping)
-{
-  std::ostringstream prm;
-  prm << "set Dimension = 2\n"
-      << "subsection Background grid\n"
-      << "  set Lower corner = 0, 0\n  set Upper corner = 0.625, 0.75\n"
-      << "  set Number of cells = 40, 48\n"
-      << "  set Boundary conditions = x-: free slip, x+: free slip, "
-      << "y-: free slip, y+: open\nend\n"
-      << "subsection Physics\n  set Gravity = 0, 0\nend\n"
-      << "subsection Materials\n  subsection elastic\n"
-      << "    set Constitutive model = linear elastic\n"
-      << "    set Density = 1\n    set Young's modulus = 1000\n"
-      << "    set Poisson's ratio = 0.3\n  end\nend\n"
-      << "subsection Grains\n";
-  unsigned int k = 0;
-  for (const double y : {0.1, 0.3, 0.5})
-    for (const double x : {0.1, 0.3, 0.5})
-      prm << "  subsection Disk " << ++k << "\n    set Shape = disk\n"
-          << "    set Centre = " << x << ", " << y << "\n"
-          << "    set Radius = 0.1\n    set Material = elastic\n  end\n";
-  prm << "  subsection Platen\n    set Shape = rectangle\n"
-      << "    set Centre = 0.3125, 0.633125\n    set Size = 0.625, 0.06\n"
-      << "    set Material = elastic\n    set Rigid = true\n"
-      << "    set Prescribed velocity = 0; -0.037\n  end\nend\n"
-      << "subsection Contact\n  set Contact model = Coulomb friction\n"
-      << "  set Friction coefficient = 0.3\nend\n"
-      << "subsection Time stepping\n  set End time = 0.3\n"
-      << time_stepping << "end\n"
-      << "subsection Linear solver\n  set Preconditioner = AMG\nend\n";
-  return prm.str();
-}
-
-
 
 int
 main(int argc, char **argv)

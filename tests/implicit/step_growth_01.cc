@@ -49,8 +49,7 @@ main(int argc, char **argv)
                         "  set CFL number = 7.5\n"
                         "  set Maximum time step = " +
                         std::to_string(300. * explicit_step) + "\n"));
-  std::vector<double> steps(energy.at("dt").begin() + 1,
-                            energy.at("dt").end());
+  std::vector<double> steps(energy.at("dt").begin() + 1, energy.at("dt").end());
   std::sort(steps.begin(), steps.end());
   // (The last step may be cut short by the End time.)
   const double median = steps[steps.size() / 2] / explicit_step;
