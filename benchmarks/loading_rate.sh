@@ -18,15 +18,19 @@
 # - the same with Time stepping/Mass scaling = each of MASS_SCALINGS;
 # - the implicit case (AMG) at FACTORS times the explicit step, with
 #   Nonlinear solver/Tolerance = TOLERANCE and Time stepping/Theta = THETA
-#   if given (else the case's: 1/2).
+#   if given (else the case's: 1/2);
+# - the implicit case from its own step with the steps grown by the
+#   controller up to Time stepping/Maximum time step = each of MAXIMA
+#   times the explicit step (the same TOLERANCE and THETA, and
+#   Time stepping/Energy error per step = ENERGY_ERROR if given).
 # Per run it prints: wall time, steps, rejected steps, steps advanced by
 # the explicit fallback, Newton iterations per step, GMRES iterations per
 # Newton iteration, residual evaluations per step, the platen work and
 # the mean platen force against the reference, the largest deviation of
 # the force over tenths of the travel from the reference's (in units of
 # the reference's mean force), the energy created (balance residual over
-# the platen work), and the median inertial number of the platen loading
-# over the run (walls.csv). Not a test: it prints figures. At 1e-3 the
+# the platen work), the median inertial number of the platen loading
+# over the run (walls.csv) and the median step over the explicit step. Not a test: it prints figures. At 1e-3 the
 # runs take seconds to a minute; at 1e-4 the explicit reference takes
 # about 3 minutes and the implicit runs at the default tolerance longer;
 # 1e-5 takes about 30 minutes per explicit run.
@@ -34,7 +38,8 @@
 # Usage: benchmarks/loading_rate.sh [build directory=build]
 # Environment: PACKINGS (default "loose"; "loose dense" for both),
 # DENSE_CHECKPOINT, DENSE_TRAVEL, RATES (default "1e-3 1e-4"), FRICTIONS (default "0 0.3"),
-# MASS_SCALINGS (default "10 100"), FACTORS (default "30 300"), GAP_CHECK
+# MASS_SCALINGS (default "10 100"), FACTORS (default "30 300"), MAXIMA
+# (default none), ENERGY_ERROR (default that of the code), GAP_CHECK
 # (true or false; default that of the case), TOLERANCE (the implicit runs'
 # Newton tolerance; default that of the case), THETA (the implicit runs'
 # Theta; default that of the case).
@@ -44,8 +49,9 @@ source "$(dirname "$0")/common/run_case.sh" "$@"
 packings=${PACKINGS:-loose}
 rates=${RATES:-1e-3 1e-4}
 frictions=${FRICTIONS:-0 0.3}
-scalings=${MASS_SCALINGS:-10 100}
-factors=${FACTORS:-30 300}
+scalings=${MASS_SCALINGS-10 100}
+factors=${FACTORS-30 300}
+maxima=${MAXIMA:-}
 
 # The wave speed of both cases (E = 1000, nu = 0.3, rho = 1, plane strain).
 wave_speed=$(python3 -c "
@@ -59,10 +65,11 @@ print((E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho)) ** 0.5)")
 # then the platen work and force. A run resumed from a checkpoint holds
 # the history before it too; START leaves it out.
 compare() {
-  python3 - "$work/$1" "$work/$2" "$3" <<'PYTHON'
+  python3 - "$work/$1" "$work/$2" "$3" "$explicit_step" <<'PYTHON'
 import csv, math, sys
 
 start = float(sys.argv[3])
+explicit_step = float(sys.argv[4])
 
 def columns(path):
     # Rows after START (a resumed run repeats the header at the resume).
@@ -108,10 +115,12 @@ mean, reference_mean = sum(mine) / 10, sum(theirs) / 10
 deviation = max(abs(a - b) for a, b in zip(mine, theirs)) / reference_mean
 numbers = sorted(x for x in walls["grain_1_inertial_number"] if math.isfinite(x) and x > 0)
 median = numbers[len(numbers) // 2] if numbers else float("inf")
+step = sorted(walls["dt"])[len(walls["dt"]) // 2] / explicit_step
 print(f"{steps} | {rejected} | {newton / steps:.3g} | "
       f"{gmres / newton if newton else 0:.3g} | {evaluations / steps:.3g} | "
       f"{work:.4g} | {work / reference_work:.3f} | {mean:.4g} | "
-      f"{mean / reference_mean:.3f} | {deviation:.2f} | {created:.3f} | {median:.1e}")
+      f"{mean / reference_mean:.3f} | {deviation:.2f} | {created:.3f} | {median:.1e} | "
+      f"{step:.3g}")
 PYTHON
 }
 
@@ -150,8 +159,8 @@ if [ -n "${THETA:-}" ]; then
   tolerance_text="$tolerance_text\nsubsection Time stepping\n  set Theta = $THETA\nend"
 fi
 
-echo "| packing | V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| packing | V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I | median step / explicit step |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 
 # The dense packing's checkpoint and its time (from the energy.csv of the
 # run that wrote it).
@@ -234,6 +243,20 @@ print(v, $start + travel / v)")"
           echo "| $prefix $(row "$name" "implicit ${factor}x" "$seconds" "$reference" "$start")"
         else
           echo "| $prefix | implicit ${factor}x | $seconds |"
+        fi
+      done
+      for maximum in $maxima; do
+        name="grown_${packing}_${rate}_${friction}_$maximum"
+        step=$(python3 -c "print($maximum * $explicit_step)")
+        growth="subsection Time stepping\n  set Maximum time step = $step\n"
+        if [ -n "${ENERGY_ERROR:-}" ]; then
+          growth="$growth  set Energy error per step = $ENERGY_ERROR\n"
+        fi
+        if seconds=$(timed "$name" "$implicit_case" \
+          "$common\n$implicit_text\n${growth}end\n$tolerance_text"); then
+          echo "| $prefix $(row "$name" "implicit, grown to ${maximum}x" "$seconds" "$reference" "$start")"
+        else
+          echo "| $prefix | implicit, grown to ${maximum}x | $seconds |"
         fi
       done
     done
