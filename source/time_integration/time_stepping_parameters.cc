@@ -82,11 +82,12 @@ namespace grainmpm
       "the step of Time step or CFL number (the nominal step), up to this "
       "value, by the same rule as a cut step grows back (min(2, N_t / N) "
       "after Steps before growth easy steps), as long as no material point "
-      "moves more than Maximum displacement per step in a step. A step "
-      "that fails is halved as usual. For slow, quasi-static loading, "
-      "where the nominal step of the wave speed is far smaller than what "
-      "the loading needs (doc/theory.md). Zero means the nominal step is "
-      "the largest. Units: time.",
+      "moves more than Maximum displacement per step in a step; a grown "
+      "step that creates more than Energy error per step, or fails, is "
+      "halved. For slow, quasi-static loading, where the nominal step of "
+      "the wave speed is far smaller than what the loading needs "
+      "(doc/theory.md section 12). Zero means the nominal step is the "
+      "largest. Units: time.",
       Patterns::Double(0.));
     prm.add_parameter(
       "Maximum displacement per step",
