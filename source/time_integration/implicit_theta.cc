@@ -55,10 +55,11 @@ namespace grainmpm
               grid,
               transfer.get_rigid_motion(),
               transfer.get_field_is_rigid())
-    , grown_step(nominal_time_step(parameters.time_stepping,
-                                   grid.minimum_cell_size(),
-                                   largest_wave_speed(grains, materials),
-                                   0.))
+    , nominal_step_at_rest(
+        nominal_time_step(parameters.time_stepping,
+                          grid.minimum_cell_size(),
+                          largest_wave_speed(grains, materials),
+                          0.))
     , residual(contact, grid, materials)
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
@@ -235,7 +236,7 @@ namespace grainmpm
   {
     const TimeSteppingParameters &stepping = parameters.time_stepping;
     if (!(stepping.maximum_time_step > 0. && stepping.energy_error > 0. &&
-          dt > grown_step))
+          dt > nominal_step_at_rest))
       return "";
     // The grid step's share of the energy balance, as the ledger books it
     // after the step (theory section 14), from a trial constitutive update.

@@ -11,9 +11,9 @@
 // step at least twice the nominal one (measured: 108 times the explicit
 // step); and the platen work must stay within 5 % of the explicit one
 // (measured: +1.6 %; +3.6 % with Energy error per step = 0). Also checked:
-// no step is longer than the maximum, and the momentum balance of the
-// platen force holds as in the fixed-step runs (the constraint work is not
-// negative).
+// no step is longer than the maximum, and, as in the fixed-step runs of
+// jammed_stack_01, the work of the constraints (booked as friction work)
+// is not negative.
 
 #include <grainmpm/simulator.h>
 

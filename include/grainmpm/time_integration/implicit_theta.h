@@ -116,11 +116,12 @@ namespace grainmpm
   private:
     /**
      * With `Time stepping/Maximum time step`: why the converged step, if
-     * longer than grown_step, is rejected for the energy its grid step
-     * creates (`Energy error per step`), or an empty string. @p kinetic_old and @p kinetic_new are
-     * the local grid kinetic energies, @p constraint_work the local
-     * friction less boundary work of the step; the new elastic energy
-     * comes from a trial constitutive update with the theta velocities.
+     * longer than nominal_step_at_rest, is rejected for the energy its
+     * grid step creates (`Energy error per step`), or an empty string.
+     * @p kinetic_old and @p kinetic_new are the local grid kinetic
+     * energies, @p constraint_work the local friction less boundary work
+     * of the step; the new elastic energy comes from a trial constitutive
+     * update with the theta velocities.
      */
     std::string
     energy_error(Particles::ParticleHandler<dim> &particle_handler,
@@ -136,7 +137,7 @@ namespace grainmpm
      * Steps longer than this have grown beyond the nominal step (that of
      * the material at rest), and their energy is checked.
      */
-    const double    grown_step;
+    const double    nominal_step_at_rest;
     GridState<dim>  state;
     MassMatrix<dim> mass_matrix;
 
