@@ -21,7 +21,7 @@ namespace grainmpm
     slip_directions.assign(n_slots, Tensor<1, dim>());
     references.assign(n_slots, Tensor<1, dim>());
     slot_kept.assign(n_slots, 0.);
-    slot_flips.assign(n_slots, 0);
+    slot_changes.assign(n_slots, Changes());
     wall_slots.clear();
     wall_faces.clear();
     for (const unsigned int node : grid.boundary_nodes())
@@ -42,7 +42,7 @@ namespace grainmpm
     wall_state.assign(wall_slots.size(), ContactState::free);
     wall_slip_directions.assign(wall_slots.size(), Tensor<1, dim>());
     wall_kept.assign(wall_slots.size(), 0.);
-    wall_flips.assign(wall_slots.size(), 0);
+    wall_changes.assign(wall_slots.size(), Changes());
     any_active = false;
     decided    = false;
   }
@@ -56,17 +56,23 @@ namespace grainmpm
                              const bool            only_relax,
                              ContactState         &state,
                              Tensor<1, dim>       &direction,
-                             unsigned char        &flips)
+                             Changes              &changes)
   {
     // A primal-dual active set may cycle: a slot caught at one iterate is
-    // released at the next and caught again. After max_flips changes in a
-    // step (or for every entry with @p only_relax) an entry is settled:
-    // it may be released or stick, but a free entry is not caught again
-    // (it may close its gap a little beyond the bound, which the next
-    // step's gap sees) and a sticking one does not slip again. Neither a
-    // free entry nor a sticking one can do work against the motion that
-    // a constraint resists; friction along a stale slip direction could.
-    const bool settled = only_relax || flips >= max_flips;
+    // released at the next and caught again. After max_contact_changes
+    // catches and releases in a step (or for every entry with
+    // @p only_relax) a free entry is not caught again (it may close its gap
+    // a little beyond the bound, which the next step's gap sees); after
+    // max_slip_changes changes of friction a sticking one does not slip
+    // again. A held entry may always be released or stick. Neither a free
+    // entry nor a sticking one can do work against the motion that a
+    // constraint resists; friction along a stale slip direction could.
+    const bool catch_settled =
+      only_relax || changes.contact >= max_contact_changes;
+    const bool slip_settled = only_relax || changes.slip >= max_slip_changes;
+    const auto count        = [](unsigned char &n) {
+      n = static_cast<unsigned char>(std::min(n + 1, 255));
+    };
     if (state == before)
       {
         // A sliding entry keeps its slip direction while the new one is
@@ -78,8 +84,8 @@ namespace grainmpm
                            direction * before_direction < 0.866;
         if (!turns)
           direction = before_direction;
-        else if (!settled)
-          flips = std::min(flips + 1, 255);
+        else if (!slip_settled)
+          count(changes.slip);
         else
           {
             state     = ContactState::sticking;
@@ -87,21 +93,33 @@ namespace grainmpm
           }
         return false;
       }
-    if (!settled || state != ContactState::sliding)
+    if (before == ContactState::free)
       {
-        if (before == ContactState::free && settled)
+        // A catch.
+        if (catch_settled)
           {
             state     = ContactState::free;
             direction = Tensor<1, dim>();
             return true;
           }
-        flips = std::min(flips + 1, 255);
+        count(changes.contact);
         return false;
       }
-    // Settled, sliding where it was free or stuck.
-    state     = before;
-    direction = Tensor<1, dim>();
-    return true;
+    if (state == ContactState::free)
+      {
+        // A release.
+        count(changes.contact);
+        return false;
+      }
+    // Between sticking and sliding.
+    if (state == ContactState::sliding && slip_settled)
+      {
+        state     = before;
+        direction = Tensor<1, dim>();
+        return true;
+      }
+    count(changes.slip);
+    return false;
   }
 
 
@@ -144,7 +162,7 @@ namespace grainmpm
                    !catches,
                    slot_state[s],
                    slip_directions[s],
-                   slot_flips[s]))
+                   slot_changes[s]))
           slot_kept[s] = previous.slot_kept[s];
 
     // Walls see the velocities after contact, face after face.
@@ -175,7 +193,7 @@ namespace grainmpm
                  !catches,
                  wall_state[w],
                  wall_slip_directions[w],
-                 wall_flips[w]);
+                 wall_changes[w]);
         wall_kept[w] = ContactLaw<dim>::wall_kept_approach(
           condition, wall_state[w], allowed, keep_allowed_approach);
         ContactLaw<dim>::apply_state(wall_state[w],

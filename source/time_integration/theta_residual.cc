@@ -114,11 +114,20 @@ namespace grainmpm
   ThetaResidual<dim>::freeze_status(const VectorType &velocities,
                                     const bool        monotone)
   {
-    // Contact is detected on the theta velocity of what the momentum
-    // balance asks for, V - R_raw(V) = v^n + dt (f / m + g) (the explicit
-    // scheme's v^L): a slot held by a constraint stays held while its
-    // reaction pushes, and is released when it would pull (active-set
-    // Newton).
+    // The decisions of a primal-dual active set (as in deal.II's step-41):
+    // a held slot on its reaction, a free slot on its motion. A held slot
+    // stays held while the theta velocity of what the momentum balance
+    // asks for, V - R_raw(V) = v^n + dt (f / m + g) (the explicit scheme's
+    // v^L), approaches by more than the constraint lets it (the reaction
+    // pushes), and is released when it would pull. A free slot is caught
+    // when its own theta velocity (1 - theta) v^n + theta V passes the
+    // approach its gap allows. For a free slot both velocities agree once
+    // the solve has converged, but at an early iterate of a long step
+    // V - R_raw(V) carries the iterate's error amplified by about
+    // (dt / dt_explicit)^2: decided on it, slots were caught and released in
+    // turn until they settled free, and grains passed into each other. The
+    // first decision of a step, with no status yet, is taken on
+    // V - R_raw(V) for every slot.
     VectorType trial_velocities(velocities);
     {
       VectorType raw;
@@ -127,6 +136,21 @@ namespace grainmpm
       trial_velocities -= raw;
       trial_velocities.sadd(theta, 1. - theta, *old_velocities);
     }
+    if (status.decided)
+      {
+        std::vector<bool> held(layout->n_slots(), false);
+        for (unsigned int s = 0; s < held.size(); ++s)
+          held[s] = status.slot_state[s] != ContactState::free;
+        for (unsigned int w = 0; w < status.wall_slots.size(); ++w)
+          if (status.wall_state[w] != ContactState::free)
+            held[status.wall_slots[w]] = true;
+        for (unsigned int s = 0; s < held.size(); ++s)
+          if (!held[s])
+            for (unsigned int d = 0; d < dim; ++d)
+              trial_velocities.local_element(s * dim + d) =
+                (1. - theta) * old_velocities->local_element(s * dim + d) +
+                theta * velocities.local_element(s * dim + d);
+      }
 
     const ContactStatus<dim> old_status = status;
     status.freeze(contact,

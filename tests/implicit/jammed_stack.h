@@ -5,7 +5,8 @@
 // 6.4 cells per radius) stacked three by three on the floor, against the
 // left wall and touching each other, Coulomb friction 0.3, compressed by a
 // rigid platen (grain 10) that starts 0.2 cells above the top row and
-// moves down at V = 0.037 (V / c = 1e-3) to t = 0.3 (0.7 cells of travel).
+// moves down, by default at V = 0.037 (V / c = 1e-3) to t = 0.3 (0.7 cells
+// of travel).
 
 #ifndef grainmpm_tests_implicit_jammed_stack_h
 #define grainmpm_tests_implicit_jammed_stack_h
@@ -15,10 +16,13 @@
 
 /**
  * The parameter text of the stack, with @p time_stepping (lines of the
- * subsection Time stepping) added.
+ * subsection Time stepping) added, the platen moving down at
+ * @p platen_speed to @p end_time.
  */
 inline std::string
-stack_case(const std::string &time_stepping)
+stack_case(const std::string &time_stepping,
+           const std::string &platen_speed = "0.037",
+           const std::string &end_time     = "0.3")
 {
   std::ostringstream prm;
   prm << "set Dimension = 2\n"
@@ -42,10 +46,11 @@ stack_case(const std::string &time_stepping)
   prm << "  subsection Platen\n    set Shape = rectangle\n"
       << "    set Centre = 0.3125, 0.633125\n    set Size = 0.625, 0.06\n"
       << "    set Material = elastic\n    set Rigid = true\n"
-      << "    set Prescribed velocity = 0; -0.037\n  end\nend\n"
+      << "    set Prescribed velocity = 0; -" << platen_speed
+      << "\n  end\nend\n"
       << "subsection Contact\n  set Contact model = Coulomb friction\n"
       << "  set Friction coefficient = 0.3\nend\n"
-      << "subsection Time stepping\n  set End time = 0.3\n"
+      << "subsection Time stepping\n  set End time = " << end_time << "\n"
       << time_stepping << "end\n"
       << "subsection Linear solver\n  set Preconditioner = AMG\nend\n";
   return prm.str();

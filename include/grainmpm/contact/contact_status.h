@@ -58,7 +58,7 @@ namespace grainmpm
      * hysteresis of ContactLaw::classify() against the states frozen
      * before: a state changes only when the velocities cross its threshold
      * by more than @p band. Decisions after the first in a step are
-     * settled (settle()): an entry that has changed twice, or every entry
+     * settled (settle()): an entry that has changed often, or every entry
      * without @p catches, may only be released or stick, so that repeated
      * decisions end.
      */
@@ -158,23 +158,39 @@ namespace grainmpm
 
   private:
     /**
-     * Changes of state an entry may make in a step before it is settled
-     * (settle()).
+     * Changes an entry may make in a step before it is settled (settle()):
+     * catches and releases, and changes between sticking and sliding
+     * (turns of the slip direction included). Long steps need several
+     * catches and releases: at 500 times the explicit step the first
+     * iterates of a step, far from its solution, catch and release a slot
+     * four times and more before it comes to rest, and a slot settled free
+     * early passes into its partner. Friction settles after two changes,
+     * which do not let grains pass into each other.
      */
-    static constexpr unsigned char max_flips = 2;
+    static constexpr unsigned char max_contact_changes = 6;
+    static constexpr unsigned char max_slip_changes    = 2;
 
-    /** Discrete changes of state per slot and wall entry in this step. */
-    std::vector<unsigned char> slot_flips;
-    std::vector<unsigned char> wall_flips;
+    /** The changes of one entry in this step. */
+    struct Changes
+    {
+      unsigned char contact = 0;
+      unsigned char slip    = 0;
+    };
+
+    /** Changes per slot and wall entry in this step. */
+    std::vector<Changes> slot_changes;
+    std::vector<Changes> wall_changes;
 
     /**
      * Settle the decision @p state (with slip direction @p direction) of an
-     * entry that was @p before (with @p before_direction) and has changed
-     * @p flips times in this step: a slip direction within 30 degrees of
-     * the one before is not a change; with @p only_relax, or after
-     * max_flips changes, a free entry stays free, a sticking one does not
-     * slip, and a sliding one whose slip turns sticks. Counts the change in
-     * @p flips. Returns whether the state before was restored.
+     * entry that was @p before (with @p before_direction) and has made
+     * @p changes in this step: a slip direction within 30 degrees of the
+     * one before is not a change. With @p only_relax, or after
+     * max_contact_changes catches and releases, a free entry stays free;
+     * with @p only_relax, or after max_slip_changes changes of friction, a
+     * sticking one does not slip and a sliding one whose slip turns sticks.
+     * Counts the change in @p changes. Returns whether the state before was
+     * restored.
      */
     static bool
     settle(const ContactState    before,
@@ -182,7 +198,7 @@ namespace grainmpm
            const bool            only_relax,
            ContactState         &state,
            Tensor<1, dim>       &direction,
-           unsigned char        &flips);
+           Changes              &changes);
 
     /**
      * Which map apply_map() applies: the affine one or its linear part
