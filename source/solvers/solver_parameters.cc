@@ -127,10 +127,12 @@ namespace grainmpm
       "within a Newton iteration and re-evaluated after every iteration (a "
       "primal-dual active set): a constraint whose reaction would pull is "
       "released, a free field that would pass the approach its gap allows "
-      "is caught. A contact that has changed six times in a step may after "
-      "that only be released or stick; after this many changes of the "
-      "whole status in one step, every contact may only be released or "
-      "stick, so that a status that would cycle settles. Dimensionless.",
+      "is caught. A contact that has been caught or released six times in "
+      "a step is not caught again, and one that has changed between "
+      "sticking and sliding twice does not slip again; after this many "
+      "changes of the whole status in one step, every contact may only be "
+      "released or stick, so that a status that would cycle settles. "
+      "Dimensionless.",
       Patterns::Integer(0, 100));
     prm.add_parameter(
       "Contact status tolerance",

@@ -56,4 +56,19 @@ stack_case(const std::string &time_stepping,
   return prm.str();
 }
 
+/** The explicit stable step of the stack at CFL 0.25, 0.25 h / c. */
+constexpr double stack_explicit_step = 1.0647e-4;
+
+/**
+ * The lines of the subsection Time stepping of the explicit reference
+ * runs: the leapfrog, update stress last, at CFL 0.25.
+ */
+inline std::string
+stack_explicit_reference()
+{
+  return "  set Scheme = explicit leapfrog\n"
+         "  set Stress update = USL\n"
+         "  set CFL number = 0.25\n";
+}
+
 #endif

@@ -35,16 +35,11 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 
-  const double      explicit_step = 1.0647e-4; // 0.25 h / c
-  const std::string speed         = "0.00037";
-  const std::string end_time      = "1.4";
+  const std::string speed    = "0.00037";
+  const std::string end_time = "1.4";
   const auto        explicit_run =
     run_case("explicit",
-             stack_case("  set Scheme = explicit leapfrog\n"
-                        "  set Stress update = USL\n"
-                        "  set CFL number = 0.25\n",
-                        speed,
-                        end_time));
+             stack_case(stack_explicit_reference(), speed, end_time));
   const double elastic = explicit_run.at("elastic_energy").back();
   const double work    = explicit_run.at("boundary_work").back();
   deallog << "explicit: elastic energy and platen work > 0: "
@@ -54,7 +49,7 @@ main(int argc, char **argv)
     run_case("implicit",
              stack_case("  set Scheme = implicit theta\n"
                         "  set Time step = " +
-                          std::to_string(170. * explicit_step) + "\n",
+                          std::to_string(170. * stack_explicit_step) + "\n",
                         speed,
                         end_time));
   deallog << "implicit at 170 times the explicit step: elastic energy "

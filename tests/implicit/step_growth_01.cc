@@ -33,12 +33,8 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 
-  const double explicit_step = 1.0647e-4; // 0.25 h / c
-  const auto   explicit_run =
-    run_case("explicit",
-             stack_case("  set Scheme = explicit leapfrog\n"
-                        "  set Stress update = USL\n"
-                        "  set CFL number = 0.25\n"));
+  const auto explicit_run =
+    run_case("explicit", stack_case(stack_explicit_reference()));
   const double reference = explicit_run.at("boundary_work").back();
   deallog << "explicit: platen work > 0: " << (reference > 0. ? "yes" : "no")
           << std::endl;
@@ -48,13 +44,13 @@ main(int argc, char **argv)
              stack_case("  set Scheme = implicit theta\n"
                         "  set CFL number = 7.5\n"
                         "  set Maximum time step = " +
-                        std::to_string(300. * explicit_step) + "\n"));
+                        std::to_string(300. * stack_explicit_step) + "\n"));
   std::vector<double> steps(energy.at("dt").begin() + 1, energy.at("dt").end());
   std::sort(steps.begin(), steps.end());
   // (The last step may be cut short by the End time.)
-  const double median = steps[steps.size() / 2] / explicit_step;
+  const double median = steps[steps.size() / 2] / stack_explicit_step;
   const double largest =
-    *std::max_element(steps.begin(), steps.end()) / explicit_step;
+    *std::max_element(steps.begin(), steps.end()) / stack_explicit_step;
   const double work = energy.at("boundary_work").back();
   deallog << "grown: median step at least twice the nominal one: "
           << (median >= 60. ? "yes" : "no") << std::endl;
