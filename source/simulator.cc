@@ -3,6 +3,7 @@
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/base/stop_signals.h>
+#include <grainmpm/contact/held_contact_status.h>
 #include <grainmpm/particles/material_point_layout.h>
 #include <grainmpm/particles/random_packing.h>
 #include <grainmpm/postprocess/input_record.h>
@@ -562,10 +563,18 @@ namespace grainmpm
   template <int dim>
   template <class Archive>
   void
-  Simulator<dim>::serialize(Archive &archive, const unsigned int)
+  Simulator<dim>::serialize(Archive &archive, const unsigned int version)
   {
     archive &start_time &next_step_size      &step_offset;
     archive &*time_step_controller &schedule &summary;
+    // The contact status the implicit scheme starts its next step from
+    // (empty for the explicit scheme; read and dropped by it).
+    if (version >= 1)
+      {
+        HeldContactStatus<dim>  none;
+        HeldContactStatus<dim> *held = stepper->get_held_contact_status();
+        archive &(held != nullptr ? *held : none);
+      }
   }
 
 

@@ -5,6 +5,7 @@
 // steps and the explicit fallback of the implicit scheme.
 
 #include <grainmpm/base/input_error.h>
+#include <grainmpm/contact/held_contact_status.h>
 #include <grainmpm/simulator.h>
 
 #include <sstream>
@@ -39,6 +40,11 @@ namespace grainmpm
 
         // Rejected: the particles are untouched; halve dt and retry.
         ++rejected;
+        // The retry decides its contact status afresh: a start from the
+        // last step's status that led the solve astray (a fast impact at a
+        // long step) is not tried twice.
+        if (HeldContactStatus<dim> *held = stepper->get_held_contact_status())
+          held->clear();
         const double failed_step = time.get_next_step_size();
         pcout << "  step " << step_offset + time.get_step_number() + 1
               << " at t = " << time.get_current_time()
@@ -97,6 +103,10 @@ namespace grainmpm
     }
     statistics.solver.rejected = rejected;
     last_stepper               = fallback.get();
+    // The contact status of the last implicit step does not describe the
+    // state after the sub-steps: the next implicit step decides afresh.
+    if (HeldContactStatus<dim> *held = stepper->get_held_contact_status())
+      held->clear();
     time_step_controller->resume_after_fallback(time.get_next_step_size());
     pcout << "  step " << step_offset + time.get_step_number() + 1
           << " at t = " << time.get_current_time() << " advanced by "

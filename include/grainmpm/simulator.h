@@ -23,6 +23,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <boost/serialization/access.hpp>
+#include <boost/serialization/version.hpp>
 
 #include <memory>
 #include <stdexcept>
@@ -243,5 +244,21 @@ namespace grainmpm
       const MPI_Comm     communicator,
       const bool         quiet = false);
 } // namespace grainmpm
+
+namespace boost::serialization
+{
+  /**
+   * The version of the state a checkpoint keeps of a run: 1 adds the
+   * contact status the implicit scheme starts its next step from
+   * (HeldContactStatus); a checkpoint of version 0 resumes without it.
+   */
+  template <int dim>
+  struct version<grainmpm::Simulator<dim>>
+  {
+    using type                 = mpl::int_<1>;
+    using tag                  = mpl::integral_c_tag;
+    static constexpr int value = type::value;
+  };
+} // namespace boost::serialization
 
 #endif

@@ -135,6 +135,24 @@ namespace grainmpm
       "Dimensionless.",
       Patterns::Integer(0, 100));
     prm.add_parameter(
+      "Contact status from last step",
+      keep_contact_status,
+      "Whether the contact status of a step starts from the one the last "
+      "step converged to: the contacts and wall contacts that held at its "
+      "end are held at the first iterate, and are released there if their "
+      "reaction would pull, while the others are caught if they pass the "
+      "approach their gap allows. Otherwise every step decides its status "
+      "afresh at the first iterate, on the velocities the momentum balance "
+      "asks for. Under slow loading the status changes little from one "
+      "step to the next, and starting from it saves Newton iterations; "
+      "with Time stepping/Maximum time step the steps then grow further, "
+      "and the controller does not yet bound the error of the forces "
+      "that brings, which is why this is off by default. "
+      "The status is kept in checkpoints. The first step of a run, a step "
+      "after one that ended with nothing held, the retries of a rejected "
+      "step and the step after an explicit fallback decide afresh.",
+      Patterns::Bool());
+    prm.add_parameter(
       "Contact status tolerance",
       status_tolerance,
       "Hysteresis of the contact status between Newton iterations, in "

@@ -144,6 +144,8 @@ namespace grainmpm
       residual.n_residual_evaluations();
     // The solver freezes the contact status at its first iterate itself.
     prepare(particle_handler, time, dt, false);
+    if (parameters.nonlinear_solver.keep_contact_status)
+      residual.start_status_from(held_status);
     final_residual.reinit(unknowns, true);
 
     const NewtonStatistics newton       = solver.solve(residual, unknowns);
@@ -217,6 +219,10 @@ namespace grainmpm
                                dt,
                                statistics,
                                &mass_matrix);
+    if (parameters.nonlinear_solver.keep_contact_status)
+      held_status.record(residual.get_contact_status(),
+                         transfer.get_layout(),
+                         contact.get_grid());
     transfer.finish_step(particle_handler, statistics);
     statistics.solver.residual_evaluations =
       residual.n_residual_evaluations() - evaluations_at_start;

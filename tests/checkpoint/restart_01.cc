@@ -7,8 +7,10 @@
 // directory cuts the CSV histories back to the checkpoint and
 // continues. The files at the end must be byte-for-byte those of the
 // uninterrupted run:
-// (a) the implicit two-disk collision (prm/two_disks_implicit.prm),
-//     checkpoints every 4 steps, resumed from step 28 of 37;
+// (a) the implicit two-disk collision (prm/two_disks_implicit.prm) with
+//     each step's contact status started from the last step's (kept in
+//     the checkpoint; the disks touch at step 28), checkpoints every 4
+//     steps, resumed from step 28 of 37;
 // (b) the explicit single grain between walls to t = 0.3, resumed from
 //     step 1400, shortly after the first wall impact;
 // (b') in 3D, the sphere of tests/runs/sphere_rebound_3d.prm hitting the
@@ -135,7 +137,13 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog_on_root();
-  check<2>("disks", "prm/two_disks_implicit", "", 4, 28);
+  check<2>("disks",
+           "prm/two_disks_implicit",
+           "subsection Nonlinear solver\n"
+           "  set Contact status from last step = true\n"
+           "end\n",
+           4,
+           28);
   check<2>("grain",
            "prm/single_grain_rebound_explicit",
            "subsection Time stepping\n  set End time = 0.3\nend\n",

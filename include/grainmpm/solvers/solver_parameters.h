@@ -74,6 +74,8 @@ namespace grainmpm
     unsigned int     max_status_changes   = 10;
     /** Hysteresis band of the contact status, in units of U. */
     double status_tolerance = 0.;
+    /** The first status of a step starts from the last step's. */
+    bool keep_contact_status = false;
     /** One screen line per Newton iteration and per solve. */
     bool verbose = false;
 

@@ -89,6 +89,13 @@ namespace grainmpm
       return state;
     }
 
+    /** The contact status where the next step starts. */
+    HeldContactStatus<dim> *
+    get_held_contact_status() override
+    {
+      return &held_status;
+    }
+
     /** The Newton-Krylov solver. */
     const NewtonKrylovSolver &
     get_solver() const
@@ -141,7 +148,9 @@ namespace grainmpm
     GridState<dim>  state;
     MassMatrix<dim> mass_matrix;
 
-    ThetaResidual<dim>        residual;
+    ThetaResidual<dim> residual;
+    /** The contact status of the last step, where the next one starts. */
+    HeldContactStatus<dim>    held_status;
     NewtonKrylovSolver        solver;
     VectorType                velocities_old;
     VectorType                rigid_velocities;

@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/config.h>
 #include <grainmpm/contact/grain_contact.h>
+#include <grainmpm/contact/held_contact_status.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/materials/constitutive_model.h>
 #include <grainmpm/solvers/newton_krylov.h>
@@ -137,6 +138,24 @@ namespace grainmpm
     set_status_band(const double band)
     {
       status_band = band;
+    }
+
+    /** The contact status frozen at present. */
+    const ContactStatus<dim> &
+    get_contact_status() const
+    {
+      return status;
+    }
+
+    /**
+     * Start the status of this step from @p held (the status an earlier
+     * step converged to; HeldContactStatus::apply()) instead of deciding
+     * it afresh at the first iterate. Call after reinit().
+     */
+    void
+    start_status_from(const HeldContactStatus<dim> &held)
+    {
+      held.apply(status, *layout, contact.get_grid());
     }
 
     /** evaluate(@p x, @p r). */

@@ -21,6 +21,9 @@
 
 namespace grainmpm
 {
+  template <int dim>
+  class HeldContactStatus;
+
   /**
    * The largest dilatational wave speed of the materials of the deformable
    * grains (0 if there are none).
@@ -137,6 +140,17 @@ namespace grainmpm
     get_node_contact_flags() const
     {
       return get_grid_state().node_in_contact;
+    }
+
+    /**
+     * The contact status a scheme keeps from one step to the next (the
+     * implicit scheme's; HeldContactStatus), for checkpoints and to forget
+     * it, or nullptr.
+     */
+    virtual HeldContactStatus<dim> *
+    get_held_contact_status()
+    {
+      return nullptr;
     }
 
     /** The constraint impulses of the last step (this rank's nodes). */
