@@ -5,10 +5,8 @@
 #define grainmpm_contact_held_contact_status_h
 
 #include <grainmpm/base/config.h>
-#include <grainmpm/contact/contact_law.h>
 #include <grainmpm/contact/contact_status.h>
 #include <grainmpm/grid/background_grid.h>
-#include <grainmpm/transfer/grain_field_layout.h>
 
 #include <deal.II/base/tensor.h>
 
@@ -93,13 +91,6 @@ namespace grainmpm
     clear()
     {
       entries.clear();
-    }
-
-    /** The number of entries kept. */
-    std::size_t
-    size() const
-    {
-      return entries.size();
     }
 
     template <class Archive>
