@@ -8,6 +8,7 @@
 #include <grainmpm/base/stop_signals.h>
 #include <grainmpm/contact/held_contact_status.h>
 #include <grainmpm/simulator.h>
+#include <grainmpm/time_integration/step_error_estimator.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -128,6 +129,15 @@ namespace grainmpm
         HeldContactStatus<dim>  none;
         HeldContactStatus<dim> *held = stepper->get_held_contact_status();
         archive &(held != nullptr ? *held : none);
+      }
+    // The length of the step whose accelerations the points hold, for
+    // the error estimate of the implicit scheme's next step.
+    if (version >= 2)
+      {
+        StepErrorEstimator<dim>  none(grains);
+        StepErrorEstimator<dim> *estimator =
+          stepper->get_step_error_estimator();
+        archive &(estimator != nullptr ? *estimator : none);
       }
   }
 

@@ -7,6 +7,7 @@
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/contact/held_contact_status.h>
 #include <grainmpm/simulator.h>
+#include <grainmpm/time_integration/step_error_estimator.h>
 
 #include <sstream>
 
@@ -34,7 +35,8 @@ namespace grainmpm
             statistics.solver.rejected = rejected;
             last_stepper               = stepper.get();
             time_step_controller->accept(time.get_next_step_size(),
-                                         statistics.solver.newton_iterations);
+                                         statistics.solver.newton_iterations,
+                                         statistics.solver.step_error);
             return statistics;
           }
 
@@ -107,6 +109,9 @@ namespace grainmpm
     // state after the sub-steps: the next implicit step decides afresh.
     if (HeldContactStatus<dim> *held = stepper->get_held_contact_status())
       held->clear();
+    if (StepErrorEstimator<dim> *estimator =
+          stepper->get_step_error_estimator())
+      estimator->forget();
     time_step_controller->resume_after_fallback(time.get_next_step_size());
     pcout << "  step " << step_offset + time.get_step_number() + 1
           << " at t = " << time.get_current_time() << " advanced by "

@@ -250,12 +250,15 @@ namespace boost::serialization
   /**
    * The version of the state a checkpoint keeps of a run: 1 adds the
    * contact status the implicit scheme starts its next step from
-   * (HeldContactStatus); a checkpoint of version 0 resumes without it.
+   * (HeldContactStatus), 2 the length of the last step of the implicit
+   * scheme's error estimate (StepErrorEstimator). Checkpoints before
+   * version 2 hold material points with fewer properties, and
+   * CheckpointManager::load() refuses them.
    */
   template <int dim>
   struct version<grainmpm::Simulator<dim>>
   {
-    using type                 = mpl::int_<1>;
+    using type                 = mpl::int_<2>;
     using tag                  = mpl::integral_c_tag;
     static constexpr int value = type::value;
   };

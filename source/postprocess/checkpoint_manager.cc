@@ -135,8 +135,25 @@ namespace grainmpm
     Particles::ParticleHandler<dim> &particle_handler) const
   {
     std::string error;
+    // The first line names the properties a material point carries: a
+    // checkpoint with others cannot be read into this version's points.
+    const std::string layout_line =
+      fingerprint.substr(0, fingerprint.find('\n'));
     if (Utilities::MPI::this_mpi_process(communicator) == 0 &&
-        fingerprint != resume_fingerprint)
+        resume_fingerprint.compare(0,
+                                   layout_line.size() + 1,
+                                   layout_line + '\n') != 0)
+      error = InputError("Checkpoint/Resume from = " + parameters.resume_from,
+                         "this checkpoint was written by an older version of "
+                         "grainmpm, whose material points carry other "
+                         "properties than this version's ('" +
+                           layout_line +
+                           "'); it cannot be resumed by this version. Resume "
+                           "it with the version that wrote it, or start the "
+                           "run again.")
+                .what();
+    else if (Utilities::MPI::this_mpi_process(communicator) == 0 &&
+             fingerprint != resume_fingerprint)
       error =
         InputError("Checkpoint/Resume from = " + parameters.resume_from,
                    "this checkpoint was written by a run with other "
@@ -415,7 +432,10 @@ namespace grainmpm
                                       const std::vector<GrainInfo<dim>> &grains)
   {
     std::ostringstream out;
-    out << std::setprecision(17) << "dimension: " << dim << '\n'
+    out << std::setprecision(17) << "material point properties: "
+        << MaterialPointLayout<dim>::n_properties
+        << " (with the acceleration of the last step)\n"
+        << "dimension: " << dim << '\n'
         << "grid: " << parameters.grid.lower_corner << " to "
         << parameters.grid.upper_corner << ", cells";
     for (const unsigned int n : parameters.grid.n_cells)

@@ -61,6 +61,7 @@ namespace grainmpm
                           largest_wave_speed(grains, materials),
                           0.))
     , residual(contact, grid, materials)
+    , step_error(grains)
     , solver(parameters.nonlinear_solver,
              parameters.linear_solver,
              velocity_scale(parameters, grains, materials),
@@ -210,6 +211,7 @@ namespace grainmpm
     statistics.ledger.grid_energy_change =
       grid_energies.second - grid_energies.first;
 
+    step_error.record_velocities(particle_handler);
     transfer.grid_to_particles(particle_handler,
                                state.masses,
                                state.velocities_new,
@@ -219,6 +221,8 @@ namespace grainmpm
                                dt,
                                statistics,
                                &mass_matrix);
+    statistics.solver.step_error =
+      step_error.estimate(particle_handler, dt, layout.get_communicator());
     if (parameters.nonlinear_solver.keep_contact_status)
       held_status.record(residual.get_contact_status(),
                          transfer.get_layout(),

@@ -5,6 +5,7 @@
 #include <grainmpm/time_integration/time_step_controller.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace grainmpm
@@ -120,8 +121,21 @@ namespace grainmpm
 
   void
   TimeStepController::accept(const double       step,
-                             const unsigned int newton_iterations)
+                             const unsigned int newton_iterations,
+                             const double       step_error)
   {
+    // The error estimate of a step of length dt goes as dt^2 where the
+    // motion is smooth (Zienkiewicz & Xie): the step that meets the
+    // tolerance, within a factor of two of this one.
+    if (parameters.maximum_time_step > 0. &&
+        parameters.step_error_tolerance > 0. && step_error >= 0.)
+      accuracy_limit =
+        step_error > 0. ?
+          step *
+            std::clamp(std::sqrt(parameters.step_error_tolerance / step_error),
+                       0.5,
+                       2.) :
+          2. * step;
     // A cut step grows back by min(2, N_t / N), N_t half the Newton
     // iterations allowed, after Steps before growth easy steps (N <= N_t);
     // with a Maximum time step any step grows so (next_step() bounds it).
@@ -156,6 +170,8 @@ namespace grainmpm
       largest = std::min(largest,
                          parameters.maximum_displacement * minimum_cell_size /
                            max_speed);
+    if (accuracy_limit > 0.)
+      largest = std::min(largest, accuracy_limit);
     return std::max(largest, nominal);
   }
 

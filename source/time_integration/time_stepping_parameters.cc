@@ -116,6 +116,21 @@ namespace grainmpm
       "check. Dimensionless.",
       Patterns::Double(0.));
     prm.add_parameter(
+      "Step error tolerance",
+      step_error_tolerance,
+      "Implicit scheme with Maximum time step: the relative error per step "
+      "that sizes the grown steps. The error of a step is estimated from "
+      "how the accelerations of the material points change from one step "
+      "to the next (Zienkiewicz & Xie 1991: dt^2 / 12 times the change, "
+      "against the displacement of the step, mass-weighted over the "
+      "deformable points), and the next step is dt sqrt(tolerance / "
+      "error), between half and twice dt, never below the nominal step, "
+      "besides the other bounds. The steps then stay short where grains "
+      "vibrate or hit and grow where the loading is slow and smooth; "
+      "smaller values follow the dynamics more closely (doc/theory.md "
+      "section 12). Zero means no such bound. Dimensionless.",
+      Patterns::Double(0., 1.));
+    prm.add_parameter(
       "Explicit fallback",
       explicit_fallback,
       "Implicit scheme with Adaptive time stepping: a step whose Newton "

@@ -61,6 +61,11 @@ namespace grainmpm
      * failed (`Time stepping/Explicit fallback`; 0 otherwise).
      */
     unsigned int explicit_substeps = 0;
+    /**
+     * The estimated relative error of an accepted implicit step
+     * (StepErrorEstimator), or negative if there is none.
+     */
+    double step_error = -1.;
   };
 
 

@@ -41,10 +41,15 @@ namespace grainmpm
     /** History: equivalent plastic strain (zero for elastic materials). */
     static constexpr unsigned int plastic_strain =
       deformation_gradient + dim * dim;
+    /**
+     * First of dim components of the point's mean acceleration over the
+     * last implicit step, (v^{n+1} - v^n) / dt (StepErrorEstimator).
+     */
+    static constexpr unsigned int acceleration = plastic_strain + 1;
     /** Number of properties per point. */
-    static constexpr unsigned int n_properties = plastic_strain + 1;
+    static constexpr unsigned int n_properties = acceleration + dim;
 
-    static_assert(n_properties == 11 + dim + dim * dim,
+    static_assert(n_properties == 11 + 2 * dim + dim * dim,
                   "the layout must stay dense");
 
     static Tensor<1, dim>
@@ -61,6 +66,23 @@ namespace grainmpm
     {
       for (unsigned int d = 0; d < dim; ++d)
         properties[velocity + d] = v[d];
+    }
+
+    static Tensor<1, dim>
+    get_acceleration(const ArrayView<const double> &properties)
+    {
+      Tensor<1, dim> a;
+      for (unsigned int d = 0; d < dim; ++d)
+        a[d] = properties[acceleration + d];
+      return a;
+    }
+
+    static void
+    set_acceleration(const Tensor<1, dim>    &a,
+                     const ArrayView<double> &properties)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        properties[acceleration + d] = a[d];
     }
 
     static SymmetricTensor<2, 3>

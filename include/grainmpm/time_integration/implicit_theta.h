@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/config.h>
 #include <grainmpm/solvers/newton_krylov.h>
+#include <grainmpm/time_integration/step_error_estimator.h>
 #include <grainmpm/time_integration/theta_residual.h>
 #include <grainmpm/time_integration/time_integrator.h>
 
@@ -96,6 +97,13 @@ namespace grainmpm
       return &held_status;
     }
 
+    /** The error estimate of the steps (their accelerations). */
+    StepErrorEstimator<dim> *
+    get_step_error_estimator() override
+    {
+      return &step_error;
+    }
+
     /** The Newton-Krylov solver. */
     const NewtonKrylovSolver &
     get_solver() const
@@ -150,7 +158,9 @@ namespace grainmpm
 
     ThetaResidual<dim> residual;
     /** The contact status of the last step, where the next one starts. */
-    HeldContactStatus<dim>    held_status;
+    HeldContactStatus<dim> held_status;
+    /** The error of each step from the change of its accelerations. */
+    StepErrorEstimator<dim>   step_error;
     NewtonKrylovSolver        solver;
     VectorType                velocities_old;
     VectorType                rigid_velocities;

@@ -23,6 +23,8 @@ namespace grainmpm
 {
   template <int dim>
   class HeldContactStatus;
+  template <int dim>
+  class StepErrorEstimator;
 
   /**
    * The largest dilatational wave speed of the materials of the deformable
@@ -149,6 +151,17 @@ namespace grainmpm
      */
     virtual HeldContactStatus<dim> *
     get_held_contact_status()
+    {
+      return nullptr;
+    }
+
+    /**
+     * The error estimate of the steps that a scheme keeps from one step to
+     * the next (the implicit scheme's; StepErrorEstimator), for
+     * checkpoints and to forget it, or nullptr.
+     */
+    virtual StepErrorEstimator<dim> *
+    get_step_error_estimator()
     {
       return nullptr;
     }

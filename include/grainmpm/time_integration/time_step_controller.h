@@ -87,10 +87,16 @@ namespace grainmpm
 
     /**
      * An implicit step of size @p step was accepted after
-     * @p newton_iterations: count it towards growing a cut step back.
+     * @p newton_iterations: count it towards growing a cut step back. With
+     * growth beyond the nominal step and a Step error tolerance, its
+     * estimated relative error @p step_error (StepErrorEstimator; negative:
+     * none) bounds the next step to step sqrt(tolerance / step_error),
+     * between half and twice the step, and not below the nominal step.
      */
     void
-    accept(const double step, const unsigned int newton_iterations);
+    accept(const double       step,
+           const unsigned int newton_iterations,
+           const double       step_error = -1.);
 
     /**
      * The step after an accepted one in which particles moved at most at
@@ -123,6 +129,7 @@ namespace grainmpm
     serialize(Archive &archive, const unsigned int /*version*/)
     {
       archive &minimum_step &step_limit &easy_steps &smallest_step;
+      archive                                       &accuracy_limit;
     }
 
   private:
@@ -133,8 +140,8 @@ namespace grainmpm
     /**
      * The largest step after one in which particles moved at most at
      * @p max_speed, given the nominal step @p nominal: @p nominal without
-     * growth, else the maximum time step and the displacement bound, not
-     * below @p nominal.
+     * growth, else the maximum time step, the displacement bound and the
+     * bound of the error estimate, not below @p nominal.
      */
     double
     largest_step(const double nominal, const double max_speed) const;
@@ -149,6 +156,8 @@ namespace grainmpm
     double       step_limit    = 0.;
     unsigned int easy_steps    = 0;
     double       smallest_step = std::numeric_limits<double>::max();
+    /** The bound of the error estimate on the next step (0 if none). */
+    double accuracy_limit = 0.;
   };
 } // namespace grainmpm
 

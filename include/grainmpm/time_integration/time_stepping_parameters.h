@@ -87,6 +87,11 @@ namespace grainmpm
      */
     double energy_error = 1e-3;
     /**
+     * With growth beyond the nominal step: the relative error per step
+     * (StepErrorEstimator) that bounds the next step (0: no such bound).
+     */
+    double step_error_tolerance = 0.05;
+    /**
      * Advance a step that the implicit solve cannot take at the explicit
      * stable step by explicit leapfrog sub-steps.
      */
