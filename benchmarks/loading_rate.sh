@@ -42,7 +42,10 @@
 # (default none), ENERGY_ERROR (default that of the code), GAP_CHECK
 # (true or false; default that of the case), TOLERANCE (the implicit runs'
 # Newton tolerance; default that of the case), THETA (the implicit runs'
-# Theta; default that of the case).
+# Theta; default that of the case), STEP_ERROR (the grown runs' Time
+# stepping/Step error tolerance; default that of the code),
+# STATUS_FROM_LAST (true or false: the implicit runs' Nonlinear
+# solver/Contact status from last step; default that of the code).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
@@ -157,6 +160,12 @@ if [ -n "${TOLERANCE:-}" ]; then
 fi
 if [ -n "${THETA:-}" ]; then
   tolerance_text="$tolerance_text\nsubsection Time stepping\n  set Theta = $THETA\nend"
+fi
+if [ -n "${STEP_ERROR:-}" ]; then
+  tolerance_text="$tolerance_text\nsubsection Time stepping\n  set Step error tolerance = $STEP_ERROR\nend"
+fi
+if [ -n "${STATUS_FROM_LAST:-}" ]; then
+  tolerance_text="$tolerance_text\nsubsection Nonlinear solver\n  set Contact status from last step = $STATUS_FROM_LAST\nend"
 fi
 
 echo "| packing | V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I | median step / explicit step |"

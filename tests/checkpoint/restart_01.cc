@@ -11,6 +11,12 @@
 //     each step's contact status started from the last step's (kept in
 //     the checkpoint; the disks touch at step 28), checkpoints every 4
 //     steps, resumed from step 28 of 37;
+// (a') the one-disk slow compression (prm/slow_compression_one_disk.prm)
+//     with Maximum time step = 0.05, whose steps the error estimate keeps
+//     near the nominal one, from the points' accelerations of the last
+//     step (kept with the points) and the length of the last step (kept
+//     in the checkpoint), checkpoints every 8 steps, resumed from step 32
+//     of 47;
 // (b) the explicit single grain between walls to t = 0.3, resumed from
 //     step 1400, shortly after the first wall impact;
 // (b') in 3D, the sphere of tests/runs/sphere_rebound_3d.prm hitting the
@@ -144,6 +150,11 @@ main(int argc, char **argv)
            "end\n",
            4,
            28);
+  check<2>("grown",
+           "prm/slow_compression_one_disk",
+           "subsection Time stepping\n  set Maximum time step = 0.05\nend\n",
+           8,
+           32);
   check<2>("grain",
            "prm/single_grain_rebound_explicit",
            "subsection Time stepping\n  set End time = 0.3\nend\n",
