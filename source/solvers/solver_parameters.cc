@@ -145,9 +145,10 @@ namespace grainmpm
       "afresh at the first iterate, on the velocities the momentum balance "
       "asks for. Under slow loading the status changes little from one "
       "step to the next, and starting from it saves Newton iterations; "
-      "with Time stepping/Maximum time step the steps then grow further, "
-      "and the controller does not yet bound the error of the forces "
-      "that brings, which is why this is off by default. "
+      "it is off by default because on a loose packing with Coulomb "
+      "friction under slow loading it lost a sixth of the platen work "
+      "that the explicit scheme and a fresh status give "
+      "(doc/theory.md section 9.4). "
       "The status is kept in checkpoints. The first step of a run, a step "
       "after one that ended with nothing held, the retries of a rejected "
       "step and the step after an explicit fallback decide afresh.",
