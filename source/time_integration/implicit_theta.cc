@@ -211,7 +211,12 @@ namespace grainmpm
     statistics.ledger.grid_energy_change =
       grid_energies.second - grid_energies.first;
 
-    step_error.record_velocities(particle_handler);
+    // The error estimate only where it sizes the steps (grown steps).
+    const bool estimate_error =
+      parameters.time_stepping.maximum_time_step > 0. &&
+      parameters.time_stepping.step_error_tolerance > 0.;
+    if (estimate_error)
+      step_error.record_velocities(particle_handler);
     transfer.grid_to_particles(particle_handler,
                                state.masses,
                                state.velocities_new,
@@ -221,8 +226,9 @@ namespace grainmpm
                                dt,
                                statistics,
                                &mass_matrix);
-    statistics.solver.step_error =
-      step_error.estimate(particle_handler, dt, layout.get_communicator());
+    if (estimate_error)
+      statistics.solver.step_error =
+        step_error.estimate(particle_handler, dt, layout.get_communicator());
     if (parameters.nonlinear_solver.keep_contact_status)
       held_status.record(residual.get_contact_status(),
                          transfer.get_layout(),

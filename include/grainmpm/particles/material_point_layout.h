@@ -52,37 +52,50 @@ namespace grainmpm
     static_assert(n_properties == 11 + 2 * dim + dim * dim,
                   "the layout must stay dense");
 
+    /** The dim properties from @p first on, as a vector. */
     static Tensor<1, dim>
-    get_velocity(const ArrayView<const double> &properties)
+    get_vector(const ArrayView<const double> &properties,
+               const unsigned int             first)
     {
       Tensor<1, dim> v;
       for (unsigned int d = 0; d < dim; ++d)
-        v[d] = properties[velocity + d];
+        v[d] = properties[first + d];
       return v;
+    }
+
+    /** Store @p v in the dim properties from @p first on. */
+    static void
+    set_vector(const Tensor<1, dim>    &v,
+               const ArrayView<double> &properties,
+               const unsigned int       first)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        properties[first + d] = v[d];
+    }
+
+    static Tensor<1, dim>
+    get_velocity(const ArrayView<const double> &properties)
+    {
+      return get_vector(properties, velocity);
     }
 
     static void
     set_velocity(const Tensor<1, dim> &v, const ArrayView<double> &properties)
     {
-      for (unsigned int d = 0; d < dim; ++d)
-        properties[velocity + d] = v[d];
+      set_vector(v, properties, velocity);
     }
 
     static Tensor<1, dim>
     get_acceleration(const ArrayView<const double> &properties)
     {
-      Tensor<1, dim> a;
-      for (unsigned int d = 0; d < dim; ++d)
-        a[d] = properties[acceleration + d];
-      return a;
+      return get_vector(properties, acceleration);
     }
 
     static void
     set_acceleration(const Tensor<1, dim>    &a,
                      const ArrayView<double> &properties)
     {
-      for (unsigned int d = 0; d < dim; ++d)
-        properties[acceleration + d] = a[d];
+      set_vector(a, properties, acceleration);
     }
 
     static SymmetricTensor<2, 3>
