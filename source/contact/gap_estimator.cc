@@ -4,6 +4,7 @@
 #include <grainmpm/contact/gap_estimator.h>
 
 #include <cmath>
+#include <limits>
 
 namespace grainmpm
 {
@@ -32,17 +33,29 @@ namespace grainmpm
     slot_centroids.resize(layout.n_slots());
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       {
-        const double       volume = volumes.local_element((1 + dim) * s);
-        const unsigned int faces  = grid.node_faces(layout.node(s));
+        const unsigned int node  = layout.node(s);
+        const unsigned int faces = grid.node_faces(node);
+        // Only contact nodes and the nodes on a box face are read, and only
+        // there are the volumes complete
+        // (GrainFieldLayout::reaches_contact_node()).
+        if (faces == 0 &&
+            layout.node_slots_end(node) - layout.node_slots_begin(node) < 2)
+          {
+            slot_fills[s]     = std::numeric_limits<double>::quiet_NaN();
+            slot_centroids[s] = Tensor<1, dim>();
+            continue;
+          }
+        const double volume = volumes.local_element((1 + dim) * s);
         slot_fills[s] = volume * (1U << __builtin_popcount(faces)) / support;
         // Centroids only where the walls need them.
         slot_centroids[s] = Tensor<1, dim>();
         if (faces != 0 && volume > 0.)
           {
-            const Point<dim> &node = grid.node_position(layout.node(s));
+            const Point<dim> &position = grid.node_position(node);
             for (unsigned int d = 0; d < dim; ++d)
               slot_centroids[s][d] =
-                volumes.local_element((1 + dim) * s + 1 + d) / volume - node[d];
+                volumes.local_element((1 + dim) * s + 1 + d) / volume -
+                position[d];
           }
       }
   }

@@ -138,6 +138,31 @@ namespace grainmpm
       }
 
     make_partitioners(first_slot, ghost_slot_numbers);
+    mark_contact_points(cache, grid);
+  }
+
+
+
+  template <int dim>
+  void
+  GrainFieldLayout<dim>::mark_contact_points(const TransferCache<dim>  &cache,
+                                             const BackgroundGrid<dim> &grid)
+  {
+    const std::size_t n_particles = cache.n_particles();
+    contact_points.resize(n_particles);
+    for (std::size_t p = 0; p < n_particles; ++p)
+      {
+        bool reaches = false;
+        for (unsigned int e = cache.first_entry[p];
+             e < cache.first_entry[p + 1] && !reaches;
+             ++e)
+          {
+            const unsigned int node = cache.nodes[e];
+            reaches = node >= n_owned_nodes || grid.node_faces(node) != 0 ||
+                      node_slot_offsets[node + 1] - node_slot_offsets[node] > 1;
+          }
+        contact_points[p] = reaches ? 1 : 0;
+      }
   }
 
 

@@ -156,28 +156,40 @@ namespace grainmpm
               const double volume     = properties[Layout::volume];
               [[maybe_unused]] const Point<dim> &location =
                 particle->get_location();
-              cache.for_each_entry(p, [&](const unsigned int e) {
-                const unsigned int    slot     = cache.slots[e];
-                const double          shape    = cache.shape_values[e];
-                const Tensor<1, dim> &gradient = cache.shape_gradients[e];
-                if constexpr (add_masses)
-                  mass_values[slot] += mass * shape;
-                if constexpr (add_volumes)
-                  {
-                    double *const sums = volume_sum + slot * (1 + dim);
-                    sums[0] += volume * shape;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      sums[1 + d] += volume * (shape * location[d] +
-                                               box_moment[d] * gradient[d]);
-                  }
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    momentum[slot * dim + d] +=
-                      mass * shape * properties[Layout::velocity + d];
-                    if constexpr (add_gradients)
-                      gradient_sum[slot * dim + d] += mass * gradient[d];
-                  }
-              });
+              // Volumes only from the particles whose weights reach a node
+              // where contact can act: only there are the fills read.
+              const auto scatter_entries = [&](auto with_point_volumes)
+                __attribute__((always_inline))
+              {
+                constexpr bool add_point_volumes =
+                  decltype(with_point_volumes)::value;
+                cache.for_each_entry(p, [&](const unsigned int e) {
+                  const unsigned int    slot     = cache.slots[e];
+                  const double          shape    = cache.shape_values[e];
+                  const Tensor<1, dim> &gradient = cache.shape_gradients[e];
+                  if constexpr (add_masses)
+                    mass_values[slot] += mass * shape;
+                  if constexpr (add_point_volumes)
+                    {
+                      double *const sums = volume_sum + slot * (1 + dim);
+                      sums[0] += volume * shape;
+                      for (unsigned int d = 0; d < dim; ++d)
+                        sums[1 + d] += volume * (shape * location[d] +
+                                                 box_moment[d] * gradient[d]);
+                    }
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      momentum[slot * dim + d] +=
+                        mass * shape * properties[Layout::velocity + d];
+                      if constexpr (add_gradients)
+                        gradient_sum[slot * dim + d] += mass * gradient[d];
+                    }
+                });
+              };
+              if constexpr (add_volumes)
+                if (layout.reaches_contact_node(p))
+                  return scatter_entries(std::true_type());
+              scatter_entries(std::false_type());
             });
       };
     Assert(mass_gradients == nullptr || masses != nullptr,

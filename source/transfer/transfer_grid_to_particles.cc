@@ -59,17 +59,34 @@ namespace grainmpm
     // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC: v_p = sum S v^new;
     // x_p += dt sum_i S_ip v_i (v^L explicit, v^theta implicit).
     Tensor<1, dim> increment, interpolated, moved;
-    cache.for_each_entry(p, [&](const unsigned int e) {
-      const unsigned int slot  = cache.slots[e];
-      const double       shape = cache.shape_values[e];
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          const double v_new = new_values[slot * dim + d];
-          interpolated[d] += shape * v_new;
-          moved[d] += shape * position_values[slot * dim + d];
-          increment[d] += shape * (v_new - reference_values[slot * dim + d]);
-        }
-    });
+    if (position_values == new_values)
+      {
+        // (The explicit step moves with v^new: the same sum.)
+        cache.for_each_entry(p, [&](const unsigned int e) {
+          const unsigned int slot  = cache.slots[e];
+          const double       shape = cache.shape_values[e];
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double v_new = new_values[slot * dim + d];
+              interpolated[d] += shape * v_new;
+              increment[d] +=
+                shape * (v_new - reference_values[slot * dim + d]);
+            }
+        });
+        moved = interpolated;
+      }
+    else
+      cache.for_each_entry(p, [&](const unsigned int e) {
+        const unsigned int slot  = cache.slots[e];
+        const double       shape = cache.shape_values[e];
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const double v_new = new_values[slot * dim + d];
+            interpolated[d] += shape * v_new;
+            moved[d] += shape * position_values[slot * dim + d];
+            increment[d] += shape * (v_new - reference_values[slot * dim + d]);
+          }
+      });
     const double         flip         = parameters.time_stepping.flip_fraction;
     const Tensor<1, dim> old_velocity = Layout::get_velocity(properties);
     new_velocity =

@@ -111,6 +111,20 @@ namespace grainmpm
       return mpi_communicator;
     }
 
+    /**
+     * Whether the weights of particle @p p (in the order of the cache of
+     * the last reinit()) reach a node at which contact can act: a contact
+     * node, a node on a box face (the walls), or a ghost node, which may be
+     * a contact node on its owner. Only there does the contact law read a
+     * node's fill (GapEstimator), so only these particles need to add
+     * their volumes to the grid.
+     */
+    bool
+    reaches_contact_node(const std::size_t p) const
+    {
+      return contact_points[p] != 0;
+    }
+
     /** Owned nodes with two or more slots. */
     const std::vector<unsigned int> &
     contact_nodes() const
@@ -179,13 +193,23 @@ namespace grainmpm
     void
     make_partitioner(const unsigned int components) const;
 
+    /**
+     * Mark the particles of @p cache that reaches_contact_node() names,
+     * from the slots of the nodes and the box faces of @p grid.
+     */
+    void
+    mark_contact_points(const TransferCache<dim>  &cache,
+                        const BackgroundGrid<dim> &grid);
+
     std::vector<unsigned int> slot_nodes;
     std::vector<unsigned int> slot_fields;
     std::vector<unsigned int> node_slot_offsets;
     std::vector<unsigned int> contact_node_list;
-    unsigned int              n_owned_slots    = 0;
-    unsigned int              n_owned_nodes    = 0;
-    MPI_Comm                  mpi_communicator = MPI_COMM_SELF;
+    /** Per particle of the cache, see reaches_contact_node(). */
+    std::vector<unsigned char> contact_points;
+    unsigned int               n_owned_slots    = 0;
+    unsigned int               n_owned_nodes    = 0;
+    MPI_Comm                   mpi_communicator = MPI_COMM_SELF;
     /** Whether reinit() has built the slots once. */
     bool has_slots = false;
     /** This rank's first slot and its ghost slots' global numbers. */
