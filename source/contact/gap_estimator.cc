@@ -36,10 +36,8 @@ namespace grainmpm
         const unsigned int node  = layout.node(s);
         const unsigned int faces = grid.node_faces(node);
         // Only contact nodes and the nodes on a box face are read, and only
-        // there are the volumes complete
-        // (GrainFieldLayout::reaches_contact_node()).
-        if (faces == 0 &&
-            layout.node_slots_end(node) - layout.node_slots_begin(node) < 2)
+        // there are the volumes summed (GrainFieldLayout::reads_fill()).
+        if (!layout.reads_fill(s))
           {
             slot_fills[s]     = std::numeric_limits<double>::quiet_NaN();
             slot_centroids[s] = Tensor<1, dim>();

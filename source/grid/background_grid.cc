@@ -362,15 +362,6 @@ namespace grainmpm
 
 
   template <int dim>
-  unsigned int
-  BackgroundGrid<dim>::node_faces(const unsigned int node) const
-  {
-    return node_face_masks[node];
-  }
-
-
-
-  template <int dim>
   const Tensor<1, dim> &
   BackgroundGrid<dim>::cell_size() const
   {

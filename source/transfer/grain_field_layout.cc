@@ -113,9 +113,14 @@ namespace grainmpm
     const unsigned int n_local = node_slot_offsets[n_nodes];
     slot_nodes.resize(n_local);
     slot_fields.resize(n_local);
+    fill_read.resize(n_local);
     for (unsigned int node = 0; node < n_nodes; ++node)
       for (unsigned int k = 0; k < node_count_scratch[node]; ++k)
         {
+          // (See reads_fill().)
+          fill_read[node_slot_offsets[node] + k] =
+            node >= n_owned_nodes || node_count_scratch[node] > 1 ||
+            grid.node_faces(node) != 0;
           const unsigned int j =
             node < n_owned_nodes ?
               k :
@@ -138,31 +143,6 @@ namespace grainmpm
       }
 
     make_partitioners(first_slot, ghost_slot_numbers);
-    mark_contact_points(cache, grid);
-  }
-
-
-
-  template <int dim>
-  void
-  GrainFieldLayout<dim>::mark_contact_points(const TransferCache<dim>  &cache,
-                                             const BackgroundGrid<dim> &grid)
-  {
-    const std::size_t n_particles = cache.n_particles();
-    contact_points.resize(n_particles);
-    for (std::size_t p = 0; p < n_particles; ++p)
-      {
-        bool reaches = false;
-        for (unsigned int e = cache.first_entry[p];
-             e < cache.first_entry[p + 1] && !reaches;
-             ++e)
-          {
-            const unsigned int node = cache.nodes[e];
-            reaches = node >= n_owned_nodes || grid.node_faces(node) != 0 ||
-                      node_slot_offsets[node + 1] - node_slot_offsets[node] > 1;
-          }
-        contact_points[p] = reaches ? 1 : 0;
-      }
   }
 
 

@@ -140,6 +140,7 @@ namespace grainmpm
         double *const  gradient_sum =
           add_gradients ? mass_gradients->begin() : nullptr;
         double *const volume_sum = add_volumes ? volumes->begin() : nullptr;
+        const unsigned char *const fill_read = layout.fill_read_flags();
         // The first moment of a particle's box (half-width l) under the
         // hat: V_p (S_ip x_p + l^2 / 3 grad S_ip), exact where the hat is
         // linear across the box.
@@ -156,8 +157,9 @@ namespace grainmpm
               const double volume     = properties[Layout::volume];
               [[maybe_unused]] const Point<dim> &location =
                 particle->get_location();
-              // Volumes only from the particles whose weights reach a node
-              // where contact can act: only there are the fills read.
+              // Volumes only from the points that reach a slot whose fill
+              // the contact law reads, to all their slots (the others are
+              // not read).
               const auto scatter_entries = [&](auto with_point_volumes)
                 __attribute__((always_inline))
               {
@@ -187,8 +189,14 @@ namespace grainmpm
                 });
               };
               if constexpr (add_volumes)
-                if (layout.reaches_contact_node(p))
-                  return scatter_entries(std::true_type());
+                {
+                  unsigned char reads = 0;
+                  cache.for_each_entry(p, [&](const unsigned int e) {
+                    reads |= fill_read[cache.slots[e]];
+                  });
+                  if (reads != 0)
+                    return scatter_entries(std::true_type());
+                }
               scatter_entries(std::false_type());
             });
       };

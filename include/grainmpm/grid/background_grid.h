@@ -145,7 +145,10 @@ namespace grainmpm
      * for face f (x-, x+, y-, y+, z-, z+).
      */
     unsigned int
-    node_faces(const unsigned int node) const;
+    node_faces(const unsigned int node) const
+    {
+      return node_face_masks[node];
+    }
 
     /** The locally owned nodes on the boundary of the box. */
     const std::vector<unsigned int> &

@@ -112,17 +112,22 @@ namespace grainmpm
     }
 
     /**
-     * Whether the weights of particle @p p (in the order of the cache of
-     * the last reinit()) reach a node at which contact can act: a contact
-     * node, a node on a box face (the walls), or a ghost node, which may be
-     * a contact node on its owner. Only there does the contact law read a
-     * node's fill (GapEstimator), so only these particles need to add
-     * their volumes to the grid.
+     * Whether the contact law reads the fill of (owned or ghost) slot
+     * @p slot (GapEstimator): a slot of a contact node or of a node on a box
+     * face (the walls). Ghost slots count: their node may be a contact node
+     * on its owner. Only these slots need the particles' volumes.
      */
     bool
-    reaches_contact_node(const std::size_t p) const
+    reads_fill(const unsigned int slot) const
     {
-      return contact_points[p] != 0;
+      return fill_read[slot] != 0;
+    }
+
+    /** reads_fill() of every local slot, 1 or 0. */
+    const unsigned char *
+    fill_read_flags() const
+    {
+      return fill_read.data();
     }
 
     /** Owned nodes with two or more slots. */
@@ -193,20 +198,12 @@ namespace grainmpm
     void
     make_partitioner(const unsigned int components) const;
 
-    /**
-     * Mark the particles of @p cache that reaches_contact_node() names,
-     * from the slots of the nodes and the box faces of @p grid.
-     */
-    void
-    mark_contact_points(const TransferCache<dim>  &cache,
-                        const BackgroundGrid<dim> &grid);
-
     std::vector<unsigned int> slot_nodes;
     std::vector<unsigned int> slot_fields;
     std::vector<unsigned int> node_slot_offsets;
     std::vector<unsigned int> contact_node_list;
-    /** Per particle of the cache, see reaches_contact_node(). */
-    std::vector<unsigned char> contact_points;
+    /** Per local slot, see reads_fill(). */
+    std::vector<unsigned char> fill_read;
     unsigned int               n_owned_slots    = 0;
     unsigned int               n_owned_nodes    = 0;
     MPI_Comm                   mpi_communicator = MPI_COMM_SELF;
