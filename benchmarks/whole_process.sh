@@ -21,7 +21,8 @@
 # vectors, and builds the slot layout, which the later steps keep while the
 # points keep their nodes; the plain kernel allocates before its clock
 # starts. "After the first" is (t(STEPS) - t(1)) / (STEPS - 1) from a run of
-# STEPS steps and one of 1 step.
+# STEPS steps and one of 1 step. The speed-up of 2 ranks is also printed
+# from the medians of the runs of STEPS steps.
 #
 # With DIM=3 the same in 3D: the cells inside [0.25, 0.75]^3 of a
 # CELLS^3 grid on the unit cube (by default 64 and 2: 262,144 points, 8 per
@@ -71,15 +72,16 @@ step_seconds() {
   local summary=$work/$1/summary.csv
   awk "BEGIN { printf \"%.4f\", $(summary_value "$summary" wall_time_explicit_step) + $(summary_value "$summary" wall_time_diagnostics) }"
 }
-# fastest NAME RANKS: the smallest step_seconds of $repeat runs of NAME.
+# fastest NAME RANKS: the smallest and the median step_seconds of $repeat
+# runs of NAME.
 fastest() {
-  local best="" t
+  local times=""
   for run in $(seq 1 "$repeat"); do
     (cd "$work" && "${mpirun[@]}" -np "$2" "$grainmpm" "$1.prm" > "$1-$2.out" 2>&1)
-    t=$(step_seconds "$1")
-    best=$(awk -v a="$best" -v b="$t" 'BEGIN { print (a == "" || b < a) ? b : a }')
+    times="$times $(step_seconds "$1")"
   done
-  echo "$best"
+  echo "$times" | tr ' ' '\n' | sed '/^$/d' | sort -g |
+    awk '{ t[NR] = $1 } END { m = (NR % 2) ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2; print t[1], m }'
 }
 
 plain=$(for run in $(seq 1 "$repeat"); do
@@ -93,17 +95,18 @@ for kernel in $kernels; do
   write_case "$kernel-first" "$kernel" 1
   n_points=""
   for ranks in 1 2; do
-    t_all=$(fastest "$kernel" "$ranks")
-    t_first=$(fastest "$kernel-first" "$ranks")
+    read -r t_all t_median <<< "$(fastest "$kernel" "$ranks")"
+    read -r t_first _ <<< "$(fastest "$kernel-first" "$ranks")"
     n_points=$(summary_value "$work/$kernel/summary.csv" material_points)
     all=$(awk -v t="$t_all" -v n="$n_points" -v s="$steps" 'BEGIN { printf "%.1f", 1e9 * t / (n * s) }')
     after=$(awk -v t="$t_all" -v f="$t_first" -v n="$n_points" -v s="$steps" 'BEGIN { printf "%.1f", 1e9 * (t - f) / (n * (s - 1)) }')
     # Peak memory (summed over the ranks) per point, of the last run.
     memory=$(awk "BEGIN { printf \"%.0f\", 1048576 * $(summary_value "$work/$kernel/summary.csv" peak_memory) / $n_points }")
-    if [ "$ranks" = 1 ]; then one=$all; one_after=$after; one_memory=$memory; else two=$all; two_after=$after; two_memory=$memory; fi
+    if [ "$ranks" = 1 ]; then one=$all; one_after=$after; one_median=$t_median; one_memory=$memory; else two=$all; two_after=$after; two_median=$t_median; two_memory=$memory; fi
   done
   printf '%-8s %5d %10.1f %8.2f %12.1f %8.2f %10s %10s %12s\n' "$kernel" 1 "$one" "$(awk "BEGIN { print $one / $plain }")" "$one_after" "$(awk "BEGIN { print $one_after / $plain }")" - - "$one_memory"
   printf '%-8s %5d %10.1f %8.2f %12.1f %8.2f %10.2f %10.2f %12s\n' "$kernel" 2 "$two" "$(awk "BEGIN { print $two / $plain }")" "$two_after" "$(awk "BEGIN { print $two_after / $plain }")" "$(awk "BEGIN { print $one / $two }")" "$(awk "BEGIN { print $one_after / $two_after }")" "$two_memory"
+  printf '%-8s speed-up of 2 ranks over 1 from the medians of the %d runs of %d steps: %.2f\n' "$kernel" "$repeat" "$steps" "$(awk "BEGIN { print $one_median / $two_median }")"
 done
 echo "(ns/point/step of 2 ranks: wall time x 1 / points, so the ratio to the"
 echo " one-core plain kernel falls with the speed-up; goals: 1 rank <= 3.5,"
