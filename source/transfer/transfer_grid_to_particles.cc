@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace grainmpm
@@ -59,23 +60,9 @@ namespace grainmpm
     // FLIP: v_p += sum_i S_ip (v_i^new - v_i^n); PIC: v_p = sum S v^new;
     // x_p += dt sum_i S_ip v_i (v^L explicit, v^theta implicit).
     Tensor<1, dim> increment, interpolated, moved;
-    if (position_values == new_values)
-      {
-        // (The explicit step moves with v^new: the same sum.)
-        cache.for_each_entry(p, [&](const unsigned int e) {
-          const unsigned int slot  = cache.slots[e];
-          const double       shape = cache.shape_values[e];
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const double v_new = new_values[slot * dim + d];
-              interpolated[d] += shape * v_new;
-              increment[d] +=
-                shape * (v_new - reference_values[slot * dim + d]);
-            }
-        });
-        moved = interpolated;
-      }
-    else
+    // (The explicit step moves with v^new: then the same sum is not made
+    // twice.)
+    const auto sum_entries = [&](auto separate_positions) {
       cache.for_each_entry(p, [&](const unsigned int e) {
         const unsigned int slot  = cache.slots[e];
         const double       shape = cache.shape_values[e];
@@ -83,10 +70,19 @@ namespace grainmpm
           {
             const double v_new = new_values[slot * dim + d];
             interpolated[d] += shape * v_new;
-            moved[d] += shape * position_values[slot * dim + d];
+            if constexpr (decltype(separate_positions)::value)
+              moved[d] += shape * position_values[slot * dim + d];
             increment[d] += shape * (v_new - reference_values[slot * dim + d]);
           }
       });
+    };
+    if (position_values == new_values)
+      {
+        sum_entries(std::false_type());
+        moved = interpolated;
+      }
+    else
+      sum_entries(std::true_type());
     const double         flip         = parameters.time_stepping.flip_fraction;
     const Tensor<1, dim> old_velocity = Layout::get_velocity(properties);
     new_velocity =
