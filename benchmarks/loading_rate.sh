@@ -45,7 +45,9 @@
 # Theta; default that of the case), STEP_ERROR (the grown runs' Time
 # stepping/Step error tolerance; default that of the code),
 # STATUS_FROM_LAST (true or false: the implicit runs' Nonlinear
-# solver/Contact status from last step; default that of the code).
+# solver/Contact status from last step; default that of the code),
+# LIGHT_FIELD_FRACTION (all runs' Contact/Light field fraction; default
+# that of the code).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
@@ -153,6 +155,9 @@ timed() {
 gap_text=""
 if [ -n "${GAP_CHECK:-}" ]; then
   gap_text="subsection Contact\n  set Gap check = $GAP_CHECK\nend"
+fi
+if [ -n "${LIGHT_FIELD_FRACTION:-}" ]; then
+  gap_text="$gap_text\nsubsection Contact\n  set Light field fraction = $LIGHT_FIELD_FRACTION\nend"
 fi
 tolerance_text=""
 if [ -n "${TOLERANCE:-}" ]; then

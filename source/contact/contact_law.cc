@@ -39,7 +39,7 @@ namespace grainmpm
     /** The NodeReference of @p node. */
     template <int dim>
     NodeReference<dim>
-    node_reference(const ContactNode<dim> &node)
+    node_reference(const ContactNode<dim> &node, const double floor)
     {
       NodeReference<dim> result;
       for (unsigned int k = 0; k < node.n; ++k)
@@ -48,13 +48,18 @@ namespace grainmpm
             if (result.rigid_field < 0)
               result.rigid_field = k;
           }
-        else
+        else if (node.masses[k] >= floor)
           {
             result.total_mass += node.masses[k];
             result.momentum += node.masses[k] * node.velocities[k];
             ++result.n_deformable;
           }
       result.exists = true;
+      // Without a rigid field, a partner needs two fields that are not
+      // light (with no light fields, a single field is its own partner
+      // and is left alone by the law).
+      if (floor > 0. && result.rigid_field < 0 && result.n_deformable < 2)
+        result.exists = false;
       if (result.rigid_field >= 0)
         result.velocity = node.velocities[result.rigid_field];
       else if (result.total_mass > 0.)
@@ -67,25 +72,48 @@ namespace grainmpm
 
 
     /**
-     * Shift all fields with mass by the change of the node's momentum from
-     * @p momentum_before over the node mass @p total_mass (no rigid field
-     * at the node); returns the size of the shift.
+     * The mass below which a deformable field of @p node is light: its
+     * light-field fraction times the largest mass of a deformable field
+     * (zero: no field is light).
+     */
+    template <int dim>
+    double
+    light_floor(const ContactNode<dim> &node)
+    {
+      if (!(node.light_fraction > 0.))
+        return 0.;
+      double heaviest = 0.;
+      for (unsigned int k = 0; k < node.n; ++k)
+        if (!node.rigid[k])
+          heaviest = std::max(heaviest, node.masses[k]);
+      return node.light_fraction * heaviest;
+    }
+
+
+
+    /**
+     * Shift all fields with mass, light fields (mass below @p floor)
+     * excepted, by the change of their momentum from @p momentum_before
+     * over their mass @p total_mass (no rigid field at the node); returns
+     * the size of the shift.
      */
     template <int dim>
     double
     restore_momentum(const unsigned int    n_fields,
                      const double         *masses,
+                     const double          floor,
                      const Tensor<1, dim> &momentum_before,
                      const double          total_mass,
                      Tensor<1, dim>       *velocities)
     {
       Tensor<1, dim> momentum_after;
       for (unsigned int k = 0; k < n_fields; ++k)
-        momentum_after += masses[k] * velocities[k];
+        if (masses[k] >= floor)
+          momentum_after += masses[k] * velocities[k];
       const Tensor<1, dim> shift =
         (momentum_after - momentum_before) / total_mass;
       for (unsigned int k = 0; k < n_fields; ++k)
-        if (masses[k] > 0.)
+        if (masses[k] > 0. && masses[k] >= floor)
           velocities[k] -= shift;
       return shift.norm();
     }
@@ -170,10 +198,12 @@ namespace grainmpm
     const Tensor<1, dim> *normals    = node.normals;
     Tensor<1, dim>       *velocities = node.velocities;
     const double         *allowed    = node.allowed;
+    const double          floor      = light_floor(node);
     bool                  corrected  = false;
     for (unsigned int k = 0; k < node.n; ++k)
       {
-        if (rigid[k] || !(masses[k] > options.mass_threshold))
+        if (rigid[k] || !(masses[k] > options.mass_threshold) ||
+            masses[k] < floor)
           continue;
         ContactState   state = ContactState::sticking;
         Tensor<1, dim> slip_direction;
@@ -229,7 +259,8 @@ namespace grainmpm
           node.states[k]          = ContactState::free;
           node.slip_directions[k] = Tensor<1, dim>();
         }
-    const NodeReference<dim> partner   = node_reference(node);
+    const double             floor     = light_floor(node);
+    const NodeReference<dim> partner   = node_reference(node, floor);
     const Tensor<1, dim>    &reference = partner.velocity;
     if (node.reference != nullptr)
       *node.reference = reference;
@@ -260,6 +291,7 @@ namespace grainmpm
         for (unsigned int pass = 0; pass < max_projection_passes; ++pass)
           if (restore_momentum(node.n,
                                node.masses,
+                               floor,
                                partner.momentum,
                                partner.total_mass,
                                node.velocities) <= 1e-14 * velocity_scale ||
@@ -268,6 +300,7 @@ namespace grainmpm
             break;
         restore_momentum(node.n,
                          node.masses,
+                         floor,
                          partner.momentum,
                          partner.total_mass,
                          node.velocities);
@@ -285,19 +318,21 @@ namespace grainmpm
                                        const double            mu,
                                        const Tensor<1, dim>   *fixed_reference)
   {
-    const NodeReference<dim> partner   = node_reference(node);
+    const double             floor     = light_floor(node);
+    const NodeReference<dim> partner   = node_reference(node, floor);
     Tensor<1, dim>           reference = partner.velocity;
     if (fixed_reference != nullptr)
       reference = *fixed_reference;
 
     for (unsigned int k = 0; k < node.n; ++k)
-      apply_state(states[k],
-                  node.normals[k],
-                  mu,
-                  slip_directions[k],
-                  reference,
-                  node.velocities[k],
-                  node.allowed != nullptr ? node.allowed[k] : 0.);
+      if (node.rigid[k] || node.masses[k] >= floor)
+        apply_state(states[k],
+                    node.normals[k],
+                    mu,
+                    slip_directions[k],
+                    reference,
+                    node.velocities[k],
+                    node.allowed != nullptr ? node.allowed[k] : 0.);
     // Three or more deformable fields: one momentum-restoring shift. The
     // map stays linear in the velocities; alternating it with the frozen
     // projection until the shift vanishes converges slowly without
@@ -306,6 +341,7 @@ namespace grainmpm
         partner.n_deformable > 2)
       restore_momentum(node.n,
                        node.masses,
+                       floor,
                        partner.momentum,
                        partner.total_mass,
                        node.velocities);

@@ -48,6 +48,18 @@ namespace grainmpm
       "are pushed off it, rolling grains slip, loose packings carry load "
       "through gaps).",
       Patterns::Bool());
+    prm.add_parameter(
+      "Light field fraction",
+      light_field_fraction,
+      "At a contact node, a grain's field with less mass than this fraction "
+      "of the heaviest deformable field there takes no part in the contact "
+      "law: it is left alone and does not count for the partner velocity. "
+      "Such a field is the edge of a grain whose material points barely "
+      "reach the node; its velocity carries no information, and holding it "
+      "makes the implicit contact status cycle (doc/theory.md section 5.3). "
+      "Rigid fields are never light. Zero: every field with mass takes "
+      "part. Dimensionless.",
+      Patterns::Double(0., 0.5));
     prm.leave_subsection();
   }
 

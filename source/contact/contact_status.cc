@@ -341,6 +341,7 @@ namespace grainmpm
         if (impulses != nullptr)
           before = fields.velocities;
         ContactNode<dim> view = fields.view();
+        view.light_fraction   = contact.light_field_fraction();
         if (map.affine && keep_allowed_approach)
           view.allowed = slot_kept.data() + begin;
         ContactLaw<dim>::project_node_frozen(view,

@@ -140,6 +140,7 @@ namespace grainmpm
         node_slips.resize(n);
         node_allowed.assign(n, 0.);
         ContactNode<dim> view = fields.view();
+        view.light_fraction   = light_field_fraction();
         if (uses_gaps())
           gaps.node_allowed_approach(fields.begin, view, node_allowed.data());
         view.allowed = node_allowed.data();

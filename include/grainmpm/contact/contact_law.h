@@ -91,6 +91,15 @@ namespace grainmpm
     ContactState   *states          = nullptr;
     Tensor<1, dim> *slip_directions = nullptr;
     Tensor<1, dim> *reference       = nullptr;
+
+    /**
+     * The light-field fraction (Contact/Light field fraction): a
+     * deformable field with less mass than this fraction of the heaviest
+     * deformable field of the node is light. The law leaves it alone,
+     * and it does not count for the partner velocity v_ref or the
+     * momentum the law conserves (zero: no field is light).
+     */
+    double light_fraction = 0.;
   };
 
 

@@ -174,6 +174,13 @@ namespace grainmpm
       return options;
     }
 
+    /** Contact/Light field fraction (ContactNode::light_fraction). */
+    double
+    light_field_fraction() const
+    {
+      return parameters.light_field_fraction;
+    }
+
     /** The grid, whose box faces are the walls. */
     const BackgroundGrid<dim> &
     get_grid() const
