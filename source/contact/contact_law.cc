@@ -187,6 +187,7 @@ namespace grainmpm
   bool
   ContactLaw<dim>::decide_and_project(const ContactLawOptions &options,
                                       const ContactNode<dim>  &node,
+                                      const double             floor,
                                       const Tensor<1, dim>    &reference,
                                       ContactState            *states,
                                       Tensor<1, dim>          *slip_directions,
@@ -198,7 +199,6 @@ namespace grainmpm
     const Tensor<1, dim> *normals    = node.normals;
     Tensor<1, dim>       *velocities = node.velocities;
     const double         *allowed    = node.allowed;
-    const double          floor      = light_floor(node);
     bool                  corrected  = false;
     for (unsigned int k = 0; k < node.n; ++k)
       {
@@ -269,6 +269,7 @@ namespace grainmpm
 
     const bool corrected = decide_and_project(options,
                                               node,
+                                              floor,
                                               reference,
                                               node.states,
                                               node.slip_directions,
@@ -296,7 +297,7 @@ namespace grainmpm
                                partner.total_mass,
                                node.velocities) <= 1e-14 * velocity_scale ||
               !decide_and_project(
-                options, node, reference, nullptr, nullptr, nullptr))
+                options, node, floor, reference, nullptr, nullptr, nullptr))
             break;
         restore_momentum(node.n,
                          node.masses,

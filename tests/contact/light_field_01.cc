@@ -18,17 +18,9 @@
 
 #include "../tests.h"
 
-using namespace grainmpm;
+#include "contact_tests.h"
 
-template <int dim>
-Tensor<1, dim>
-vec(const double x, const double y)
-{
-  Tensor<1, dim> v;
-  v[0] = x;
-  v[1] = y;
-  return v;
-}
+using namespace grainmpm;
 
 template <int dim>
 Tensor<1, dim>
@@ -44,14 +36,6 @@ bool
 same(const Tensor<1, dim> &a, const Tensor<1, dim> &b)
 {
   return std::memcmp(&a, &b, sizeof(a)) == 0;
-}
-
-const char *
-state_name(const ContactState state)
-{
-  return state == ContactState::free    ? "free" :
-         state == ContactState::sliding ? "sliding" :
-                                          "sticking";
 }
 
 

@@ -15,19 +15,9 @@
 
 #include "../tests.h"
 
-using namespace grainmpm;
+#include "contact_tests.h"
 
-template <int dim>
-Tensor<1, dim>
-vec(const double x, const double y, const double z)
-{
-  Tensor<1, dim> v;
-  v[0] = x;
-  v[1] = y;
-  if (dim == 3)
-    v[dim - 1] = z;
-  return v;
-}
+using namespace grainmpm;
 
 std::string
 model_name(const ContactModel model)

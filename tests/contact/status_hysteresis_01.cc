@@ -14,18 +14,9 @@
 
 #include "../tests.h"
 
-using namespace grainmpm;
+#include "contact_tests.h"
 
-namespace
-{
-  const char *
-  name(const ContactState state)
-  {
-    return state == ContactState::free    ? "free" :
-           state == ContactState::sliding ? "sliding" :
-                                            "sticking";
-  }
-} // namespace
+using namespace grainmpm;
 
 int
 main(int argc, char **argv)
@@ -40,7 +31,7 @@ main(int argc, char **argv)
                             const double       tangential,
                             const ContactState previous,
                             const double       b) {
-    return name(ContactLaw<2>::classify(
+    return state_name(ContactLaw<2>::classify(
       Tensor<1, 2>({approach, tangential}), normal, mu, slip, 0., previous, b));
   };
 

@@ -269,14 +269,16 @@ namespace grainmpm
   private:
     /**
      * One pass of the deciding law over the fields of @p node with partner
-     * velocity @p reference: decides each field's state (recorded in
-     * @p states and @p slip_directions if given, with the hysteresis of
-     * classify() against @p previous_states if given) and applies it.
-     * Returns whether a field was corrected.
+     * velocity @p reference, deformable fields lighter than @p floor left
+     * alone: decides each field's state (recorded in @p states and
+     * @p slip_directions if given, with the hysteresis of classify()
+     * against @p previous_states if given) and applies it. Returns whether
+     * a field was corrected.
      */
     static bool
     decide_and_project(const ContactLawOptions &options,
                        const ContactNode<dim>  &node,
+                       const double             floor,
                        const Tensor<1, dim>    &reference,
                        ContactState            *states,
                        Tensor<1, dim>          *slip_directions,
