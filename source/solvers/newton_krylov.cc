@@ -526,11 +526,13 @@ namespace grainmpm
     // is added any more, so that a status that would cycle settles.
     const NonlinearProblem::Change change = problem.update_linearization(
       x, statistics.status_changes >= nonlinear.max_status_changes);
-    if (change == NonlinearProblem::Change::discrete)
+    if (change == NonlinearProblem::Change::discrete ||
+        change == NonlinearProblem::Change::minor)
       {
         ++statistics.status_changes;
-        state.restarted            = true;
-        state.preconditioner_stale = state.assembled;
+        state.restarted = true;
+        if (change == NonlinearProblem::Change::discrete)
+          state.preconditioner_stale = state.assembled;
       }
     if (change != NonlinearProblem::Change::none)
       {

@@ -244,7 +244,8 @@ namespace grainmpm
       "each grain with the frozen contact and wall constraints (which "
       "couple the grains that touch), assembled and inverted by one "
       "algebraic multigrid V-cycle (Trilinos ML), set up again after each "
-      "change of the contact status. Dimensionless.",
+      "change of the contact status of more than four slots. "
+      "Dimensionless.",
       Patterns::Selection("none|probed Jacobi|AMG"));
     prm.add_parameter("Jacobi weight",
                       jacobi_weight,

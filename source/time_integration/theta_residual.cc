@@ -161,15 +161,33 @@ namespace grainmpm
                   mass_threshold,
                   status_band,
                   !monotone);
-    // The change on any rank (the solver's decisions must agree).
-    unsigned int change = 0;
-    if (old_status.slot_state != status.slot_state ||
-        old_status.wall_state != status.wall_state)
-      change = static_cast<unsigned int>(Change::discrete);
-    else if (old_status.slip_directions != status.slip_directions ||
-             old_status.wall_slip_directions != status.wall_slip_directions)
-      change = static_cast<unsigned int>(Change::continuous);
-    return static_cast<Change>(Utilities::MPI::max(change, communicator()));
+    // The change on any rank (the solver's decisions must agree): the
+    // number of slots and wall entries whose discrete state changed, or
+    // whether a slip direction did.
+    const auto n_differences = [](const auto &a, const auto &b) {
+      if (a.size() != b.size())
+        return static_cast<unsigned int>(std::max(a.size(), b.size()));
+      unsigned int n = 0;
+      for (std::size_t k = 0; k < a.size(); ++k)
+        n += (a[k] != b[k]);
+      return n;
+    };
+    const unsigned int n_changed = Utilities::MPI::sum(
+      n_differences(old_status.slot_state, status.slot_state) +
+        n_differences(old_status.wall_state, status.wall_state),
+      communicator());
+    if (n_changed > max_minor_status_change)
+      return Change::discrete;
+    if (n_changed > 0)
+      return Change::minor;
+    const unsigned int continuous =
+      (old_status.slip_directions != status.slip_directions ||
+       old_status.wall_slip_directions != status.wall_slip_directions) ?
+        1 :
+        0;
+    return Utilities::MPI::max(continuous, communicator()) > 0 ?
+             Change::continuous :
+             Change::none;
   }
 
 

@@ -32,11 +32,17 @@ namespace grainmpm
     using StepFunction =
       std::function<double(const VectorType &x, const VectorType &z)>;
 
-    /** What update_linearization() changed. */
+    /**
+     * What update_linearization() changed: nothing, something continuous
+     * (a slip direction), a discrete state that leaves an assembled
+     * preconditioner good enough to keep (minor), or one that does not.
+     * Newton restarts after a minor or a discrete change.
+     */
     enum class Change
     {
       none,
       continuous,
+      minor,
       discrete
     };
 
