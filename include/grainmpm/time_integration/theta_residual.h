@@ -135,10 +135,8 @@ namespace grainmpm
     /**
      * The largest number of slots and wall entries whose discrete state
      * may change for the change to be minor, so that the assembled
-     * preconditioner is kept through it. On the dense 100-disk packing at
-     * 60 times the explicit step one decision in five catches or releases
-     * one or two slots and nothing else; setting the V-cycle up again for
-     * those cost a tenth of the run.
+     * preconditioner is kept through it: a few slots change A little, and
+     * GMRES makes up the difference.
      */
     static constexpr unsigned int max_minor_status_change = 4;
 
