@@ -47,7 +47,8 @@
 # STATUS_FROM_LAST (true or false: the implicit runs' Nonlinear
 # solver/Contact status from last step; default that of the code),
 # LIGHT_FIELD_FRACTION (all runs' Contact/Light field fraction; default
-# that of the code).
+# that of the code), PRECONDITIONER (the implicit runs' Linear
+# solver/Preconditioner; default that of the case, AMG).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
@@ -209,7 +210,7 @@ for packing in $packings; do
     # (At rest at the checkpoint: a mass-scaled run keeps the points'
     # kinetic energy rather than their velocities.)
     resume="subsection Checkpoint\n  set Steps between checkpoints = 0\n  set Resume from = $dense_resume\n  set Scale velocities with the mass = true\nend"
-    implicit_text="subsection Time stepping\n  set Scheme = implicit theta\n  set Stress update = USF\nend\nsubsection Linear solver\n  set Preconditioner = AMG\nend"
+    implicit_text="subsection Time stepping\n  set Scheme = implicit theta\n  set Stress update = USF\nend\nsubsection Linear solver\n  set Preconditioner = ${PRECONDITIONER:-AMG}\nend"
   else
     explicit_case=slow_compression_explicit
     implicit_case=slow_compression_implicit
@@ -218,6 +219,9 @@ for packing in $packings; do
     start=0
     resume=""
     implicit_text=""
+    if [ -n "${PRECONDITIONER:-}" ]; then
+      implicit_text="subsection Linear solver\n  set Preconditioner = $PRECONDITIONER\nend"
+    fi
   fi
   explicit_step=$(python3 -c "print(0.25 / $cells / $wave_speed)")
   for rate in $rates; do

@@ -338,7 +338,10 @@ namespace grainmpm
 
     // The assembled preconditioner depends on the contact status: set up
     // before the first linear solve and again after each change of it.
-    state.assembled            = (linear.preconditioner == Preconditioner::amg);
+    state.assembled =
+      (linear.preconditioner == Preconditioner::amg ||
+       linear.preconditioner == Preconditioner::sparse_cholesky ||
+       linear.preconditioner == Preconditioner::automatic);
     state.preconditioner_stale = state.assembled;
 
     state.previous_norm = state.norm;

@@ -244,9 +244,13 @@ namespace grainmpm
       "each grain with the frozen contact and wall constraints (which "
       "couple the grains that touch), assembled and inverted by one "
       "algebraic multigrid V-cycle (Trilinos ML), set up again after each "
-      "change of the contact status of more than four slots. "
-      "Dimensionless.",
-      Patterns::Selection("none|probed Jacobi|AMG"));
+      "change of the contact status of more than four slots; or 'sparse "
+      "Cholesky': the same matrix, symmetrised, factorised exactly "
+      "(CHOLMOD) at the same moments, on one MPI process only: dearer "
+      "to set up than a V-cycle, but it leaves one to three Krylov "
+      "iterations per Newton step; or 'automatic': sparse Cholesky on one "
+      "MPI process, AMG on more. Dimensionless.",
+      Patterns::Selection("none|probed Jacobi|AMG|sparse Cholesky|automatic"));
     prm.add_parameter("Jacobi weight",
                       jacobi_weight,
                       "omega of y = omega D^-1 r (irrelevant to GMRES with one "
@@ -275,7 +279,9 @@ namespace grainmpm
       preconditioner_text,
       {{"none", Preconditioner::none},
        {"probed Jacobi", Preconditioner::probed_jacobi},
-       {"AMG", Preconditioner::amg}});
+       {"AMG", Preconditioner::amg},
+       {"sparse Cholesky", Preconditioner::sparse_cholesky},
+       {"automatic", Preconditioner::automatic}});
     flexible      = (solver == KrylovSolver::fgmres);
     probed_jacobi = (preconditioner == Preconditioner::probed_jacobi);
     if (jacobi_sweeps > 1 && !flexible && probed_jacobi)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // Copyright (C) 2026 by the grainmpm authors
 
+#include <grainmpm/base/input_error.h>
 #include <grainmpm/time_integration/implicit_theta.h>
 #include <grainmpm/time_integration/time_step_controller.h>
 
@@ -73,6 +74,21 @@ namespace grainmpm
   {
     residual.set_status_band(parameters.nonlinear_solver.status_tolerance *
                              solver.get_velocity_scale());
+    // The factorisation on one process only.
+    const Preconditioner preconditioner =
+      parameters.linear_solver.preconditioner;
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(
+      grid.get_triangulation().get_communicator());
+    if (preconditioner == Preconditioner::sparse_cholesky && n_ranks > 1)
+      throw InputError("Linear solver/Preconditioner = sparse Cholesky",
+                       "this preconditioner factorises the whole matrix on "
+                       "one MPI process, and this run has " +
+                         std::to_string(n_ranks) +
+                         " processes; use AMG or automatic in parallel.");
+    if (preconditioner == Preconditioner::sparse_cholesky ||
+        (preconditioner == Preconditioner::automatic && n_ranks == 1))
+      residual.set_preconditioner_inverse(
+        ElasticPreconditioner<dim>::Inverse::cholesky);
   }
 
 

@@ -101,7 +101,10 @@ namespace grainmpm
   {
     none,
     probed_jacobi,
-    amg
+    amg,
+    sparse_cholesky,
+    /** sparse Cholesky on one MPI process, AMG on more. */
+    automatic
   };
 
   /**

@@ -150,6 +150,14 @@ namespace grainmpm
       status_band = band;
     }
 
+    /** How the assembled preconditioner inverts its matrix. */
+    void
+    set_preconditioner_inverse(
+      const typename ElasticPreconditioner<dim>::Inverse inverse)
+    {
+      preconditioner.set_inverse(inverse);
+    }
+
     /** The contact status frozen at present. */
     const ContactStatus<dim> &
     get_contact_status() const

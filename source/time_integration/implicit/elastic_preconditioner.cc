@@ -156,7 +156,11 @@ namespace grainmpm
                    false);
     matrix.compress(VectorOperation::add);
 
-    setup_multigrid(n_owned);
+    // The V-cycle also where the symmetric part is not positive definite.
+    factorised =
+      inverse == Inverse::cholesky && cholesky.factorize(matrix, new_pattern);
+    if (!factorised)
+      setup_multigrid(n_owned);
     weighted.reinit(layout_vector.get_partitioner());
   }
 
@@ -556,7 +560,10 @@ namespace grainmpm
     const unsigned int n = dof_weights.size();
     for (unsigned int k = 0; k < n; ++k)
       weighted.local_element(k) = dof_weights[k] * src.local_element(k);
-    amg.vmult(dst, weighted);
+    if (factorised)
+      cholesky.solve(dst.begin(), weighted.begin());
+    else
+      amg.vmult(dst, weighted);
   }
 
 

@@ -6,6 +6,7 @@
 
 #include <grainmpm/base/config.h>
 #include <grainmpm/materials/constitutive_model.h>
+#include <grainmpm/solvers/sparse_cholesky.h>
 #include <grainmpm/time_integration/implicit/slot_projection.h>
 #include <grainmpm/transfer/grain_field_layout.h>
 #include <grainmpm/transfer/mass_matrix.h>
@@ -66,6 +67,25 @@ namespace grainmpm
   public:
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
+    /** How A is inverted. */
+    enum class Inverse
+    {
+      /** One V-cycle of smoothed aggregation (any number of processes). */
+      multigrid,
+      /**
+       * A sparse Cholesky factorisation of (A + A^T) / 2 (one process),
+       * or the V-cycle where that is not positive definite.
+       */
+      cholesky
+    };
+
+    /** Choose the inverse of A for the next setup() (default multigrid). */
+    void
+    set_inverse(const Inverse new_inverse)
+    {
+      inverse = new_inverse;
+    }
+
     /**
      * Set up the preconditioner for the contact status frozen at present:
      * the unknowns among the owned and ghost slots of @p layout, the
@@ -99,7 +119,10 @@ namespace grainmpm
           const VectorType                                  &layout_vector,
           const bool                                         new_pattern);
 
-    /** @p dst = A^-1 (M @p src), approximately (one V-cycle). */
+    /**
+     * @p dst = A^-1 (M @p src), approximately (one V-cycle) or with the
+     * factorisation of the symmetric part of A.
+     */
     void
     vmult(VectorType &dst, const VectorType &src) const;
 
@@ -223,9 +246,13 @@ namespace grainmpm
     std::vector<types::global_dof_index> global_columns;
     std::vector<double>                  values;
     TrilinosWrappers::SparseMatrix       matrix;
+    Inverse                              inverse = Inverse::multigrid;
     TrilinosWrappers::PreconditionAMG    amg;
-    std::vector<double>                  dof_weights;
-    mutable VectorType                   weighted;
+    SparseCholesky                       cholesky;
+    /** The last setup factorised A (else it set up the V-cycle). */
+    bool                factorised = false;
+    std::vector<double> dof_weights;
+    mutable VectorType  weighted;
   };
 } // namespace grainmpm
 
