@@ -16,6 +16,30 @@
 
 namespace grainmpm
 {
+  namespace
+  {
+    /**
+     * f(row, column, value) for each stored entry of @p A, row by row, in
+     * global numbers (the rows of @p A are 0 to n - 1 in order).
+     */
+    template <typename Function>
+    void
+    for_each_entry(const Epetra_CrsMatrix &A, const Function &f)
+    {
+      for (int r = 0; r < A.NumMyRows(); ++r)
+        {
+          int     length;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(r, length, values, columns);
+          for (int e = 0; e < length; ++e)
+            f(r, A.ColMap().GID(columns[e]), values[e]);
+        }
+    }
+  } // namespace
+
+
+
   struct SparseCholesky::Data
   {
     cholmod_common common;
@@ -29,14 +53,14 @@ namespace grainmpm
     std::vector<SuiteSparse_long> position;
     /**
      * Rows without off-diagonal values, the diagonal of A, and the other
-     * rows' values in the columns of those rows (CSR: moved_start by row),
+     * rows' values in the columns of those rows (row, column, value),
      * which solve() moves to the right-hand side.
      */
-    std::vector<bool>             decoupled;
-    std::vector<double>           diagonal;
-    std::vector<std::size_t>      moved_start;
-    std::vector<SuiteSparse_long> moved_columns;
-    std::vector<double>           moved_values;
+    std::vector<bool>   decoupled;
+    std::vector<double> diagonal;
+    std::vector<int>    moved_rows;
+    std::vector<int>    moved_columns;
+    std::vector<double> moved_values;
     /** Right-hand side and workspaces of cholmod_l_solve2(). */
     cholmod_dense *rhs       = nullptr;
     cholmod_dense *solution  = nullptr;
@@ -79,6 +103,8 @@ namespace grainmpm
   {
     cholmod_l_free_sparse(&symmetric, &common);
     cholmod_l_free_factor(&factor, &common);
+    AssertThrow(A.RowMap().LinearMap() && A.RowMap().MinMyGID() == 0,
+                ExcMessage("The rows must be in their global order."));
     n         = A.NumGlobalRows();
     n_entries = A.NumMyNonzeros();
     cholmod_triplet *triplets =
@@ -90,23 +116,12 @@ namespace grainmpm
     auto *const columns = static_cast<SuiteSparse_long *>(triplets->j);
     auto *const values  = static_cast<double *>(triplets->x);
     std::size_t k       = 0;
-    for (int r = 0; r < A.NumMyRows(); ++r)
-      {
-        int     length;
-        double *row_values;
-        int    *row_columns;
-        A.ExtractMyRowView(r, length, row_values, row_columns);
-        AssertThrow(A.RowMap().GID(r) == r,
-                    ExcMessage("The rows must be in their global order."));
-        for (int e = 0; e < length; ++e)
-          {
-            const SuiteSparse_long j = A.ColMap().GID(row_columns[e]);
-            rows[k]                  = std::min<SuiteSparse_long>(r, j);
-            columns[k]               = std::max<SuiteSparse_long>(r, j);
-            values[k]                = 0.;
-            ++k;
-          }
-      }
+    for_each_entry(A, [&](const int i, const int j, const double) {
+      rows[k]    = std::min(i, j);
+      columns[k] = std::max(i, j);
+      values[k]  = 0.;
+      ++k;
+    });
     triplets->nnz = k;
     symmetric     = cholmod_l_triplet_to_sparse(triplets, k, &common);
     AssertThrow(symmetric != nullptr,
@@ -156,7 +171,7 @@ namespace grainmpm
 
   bool
   SparseCholesky::factorize(const TrilinosWrappers::SparseMatrix &matrix,
-                            const bool new_pattern)
+                            const bool                            new_pattern)
   {
     const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
     AssertThrow(A.NumMyRows() == A.NumGlobalRows(),
@@ -172,18 +187,12 @@ namespace grainmpm
     std::vector<bool> &decoupled = data->decoupled;
     decoupled.assign(n, true);
     data->diagonal.assign(n, 0.);
-    for (int r = 0; r < A.NumMyRows(); ++r)
-      {
-        int     length;
-        double *row_values;
-        int    *row_columns;
-        A.ExtractMyRowView(r, length, row_values, row_columns);
-        for (int e = 0; e < length; ++e)
-          if (A.ColMap().GID(row_columns[e]) == r)
-            data->diagonal[r] = row_values[e];
-          else if (row_values[e] != 0.)
-            decoupled[r] = false;
-      }
+    for_each_entry(A, [&](const int i, const int j, const double value) {
+      if (i == j)
+        data->diagonal[i] = value;
+      else if (value != 0.)
+        decoupled[i] = false;
+    });
 
     // The values of (A + A^T) / 2 without the couplings of decoupled rows
     // and columns; those of the other rows go to the right-hand side.
@@ -191,31 +200,23 @@ namespace grainmpm
     std::fill(values,
               values + static_cast<SuiteSparse_long *>(data->symmetric->p)[n],
               0.);
-    data->moved_start.assign(1, 0);
+    data->moved_rows.clear();
     data->moved_columns.clear();
     data->moved_values.clear();
     std::size_t k = 0;
-    for (int r = 0; r < A.NumMyRows(); ++r)
-      {
-        int     length;
-        double *row_values;
-        int    *row_columns;
-        A.ExtractMyRowView(r, length, row_values, row_columns);
-        for (int e = 0; e < length; ++e, ++k)
-          {
-            const SuiteSparse_long j = A.ColMap().GID(row_columns[e]);
-            if (j == r)
-              values[data->position[k]] += row_values[e];
-            else if (!decoupled[r] && !decoupled[j])
-              values[data->position[k]] += 0.5 * row_values[e];
-            else if (decoupled[j] && row_values[e] != 0.)
-              {
-                data->moved_columns.push_back(j);
-                data->moved_values.push_back(row_values[e]);
-              }
-          }
-        data->moved_start.push_back(data->moved_columns.size());
-      }
+    for_each_entry(A, [&](const int i, const int j, const double value) {
+      if (i == j)
+        values[data->position[k]] += value;
+      else if (!decoupled[i] && !decoupled[j])
+        values[data->position[k]] += 0.5 * value;
+      else if (decoupled[j] && value != 0.)
+        {
+          data->moved_rows.push_back(i);
+          data->moved_columns.push_back(j);
+          data->moved_values.push_back(value);
+        }
+      ++k;
+    });
 
     cholmod_common &c = data->common;
     cholmod_l_factorize(data->symmetric, data->factor, &c);
@@ -241,13 +242,12 @@ namespace grainmpm
     // couplings to these x_j to the right-hand side.
     auto *const rhs = static_cast<double *>(data->rhs->x);
     std::memcpy(rhs, b, data->n * sizeof(double));
-    for (std::size_t i = 0; i < data->n; ++i)
-      for (std::size_t k = data->moved_start[i]; k < data->moved_start[i + 1];
-           ++k)
-        {
-          const auto j = data->moved_columns[k];
-          rhs[i] -= data->moved_values[k] * b[j] / data->diagonal[j];
-        }
+    for (std::size_t k = 0; k < data->moved_values.size(); ++k)
+      {
+        const auto j = data->moved_columns[k];
+        rhs[data->moved_rows[k]] -=
+          data->moved_values[k] * b[j] / data->diagonal[j];
+      }
     cholmod_l_solve2(CHOLMOD_A,
                      data->factor,
                      data->rhs,

@@ -64,8 +64,11 @@ fill(TrilinosWrappers::SparseMatrix &A,
 
 
 void
-report(const std::string &name, const TrilinosWrappers::SparseMatrix &A,
-       SparseCholesky &cholesky, const bool symmetric, const bool new_pattern)
+report(const std::string                    &name,
+       const TrilinosWrappers::SparseMatrix &A,
+       SparseCholesky                       &cholesky,
+       const bool                            symmetric,
+       const bool                            new_pattern)
 {
   const bool ok = cholesky.factorize(A, new_pattern);
   deallog << name << ": factorised: " << (ok ? "yes" : "no");
@@ -111,7 +114,9 @@ main(int argc, char **argv)
     for (unsigned int j = (i > 0 ? i - 1 : 0); j < std::min(n, i + 2); ++j)
       pattern.add(i, j);
   TrilinosWrappers::SparseMatrix A;
-  A.reinit(complete_index_set(n), complete_index_set(n), pattern,
+  A.reinit(complete_index_set(n),
+           complete_index_set(n),
+           pattern,
            MPI_COMM_WORLD);
 
   SparseCholesky cholesky;
