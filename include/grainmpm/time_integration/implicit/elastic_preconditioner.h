@@ -26,8 +26,10 @@ namespace grainmpm
   /**
    * An assembled approximation of the Jacobian of the implicit theta
    * residual, inverted approximately by one algebraic multigrid V-cycle
-   * (Trilinos ML through TrilinosWrappers::PreconditionAMG). The outer
-   * solver stays Jacobian-free; this only replaces the probed diagonal.
+   * (Trilinos ML through TrilinosWrappers::PreconditionAMG) or, on one
+   * process, by a sparse Cholesky factorisation of its symmetric part
+   * (SparseCholesky; set_inverse()). The outer solver stays
+   * Jacobian-free; this only replaces the probed diagonal.
    *
    * The residual (ThetaResidual) is R = P R_raw + (V - P V) with the
    * frozen contact projection P, R_raw = M_L^-1 M (V - v^n) - dt (f(v^theta)
@@ -91,7 +93,7 @@ namespace grainmpm
      * the unknowns among the owned and ghost slots of @p layout, the
      * linear part P of the frozen projection (SlotProjection::probe()
      * through @p linear_projection), the lumped masses, then A and its
-     * multigrid hierarchy.
+     * multigrid hierarchy or factorisation.
      *
      * @p owned_unknown says for each owned slot whether it is an unknown
      * of the elastic system (deformable, not light), @p masses holds the
@@ -135,9 +137,10 @@ namespace grainmpm
 
   private:
     /**
-     * Assemble A with the projection of setup() and set up the multigrid
-     * hierarchy. @p masses holds the lumped mass of each owned and ghost
-     * slot (for slots that are not unknowns any positive number),
+     * Assemble A with the projection of setup() and factorise it or set up
+     * its multigrid hierarchy. @p masses holds the lumped mass of each
+     * owned and ghost slot (for slots that are not unknowns any positive
+     * number),
      * @p unknown says for each owned and ghost slot whether it is an
      * unknown; the other arguments are those of setup().
      */
