@@ -8,6 +8,7 @@
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
 #include <cholmod.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -78,6 +79,11 @@ namespace grainmpm
       common.supernodal         = CHOLMOD_SUPERNODAL;
       common.nmethods           = 1;
       common.method[0].ordering = CHOLMOD_METIS;
+      // CHOLMOD's OpenMP regions start threads of their own whatever the
+      // cores and the MPI processes on them; grainmpm runs one thread per
+      // MPI process (main.cc), so the regions run on one (no level of
+      // parallelism is active).
+      omp_set_max_active_levels(0);
     }
 
     ~Data()

@@ -9,7 +9,8 @@
 // first and moved to the right-hand side; (2) new values in the same pattern
 // (the ordering kept) again to round-off; (3) with a non-symmetric part the
 // solve inverts (A + A^T) / 2; (4) a matrix whose symmetric part is indefinite
-// is reported (factorize() returns false) instead of giving nonsense.
+// is reported (factorize() returns false) instead of giving nonsense; (5) it
+// keeps OpenMP to one thread (grainmpm runs one thread per MPI process).
 
 #include <grainmpm/solvers/sparse_cholesky.h>
 
@@ -17,6 +18,8 @@
 #include <deal.II/base/mpi.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <omp.h>
 
 #include <cmath>
 #include <vector>
@@ -129,4 +132,6 @@ main(int argc, char **argv)
   fill(A, 1., -0.5, 1e-9, 1., 0.);
   report("indefinite", A, cholesky, true, true);
   deallog << "size: " << cholesky.size() << std::endl;
+  deallog << "active OpenMP levels at most: " << omp_get_max_active_levels()
+          << std::endl;
 }
