@@ -127,7 +127,7 @@ namespace grainmpm
       "within a Newton iteration and re-evaluated after every iteration (a "
       "primal-dual active set): a constraint whose reaction would pull is "
       "released, a free field that would pass the approach its gap allows "
-      "is caught. A contact that has been caught or released six times in "
+      "is caught. A contact that has been caught or released four times in "
       "a step is not caught again, and one that has changed between "
       "sticking and sliding twice does not slip again; after this many "
       "changes of the whole status in one step, every contact may only be "

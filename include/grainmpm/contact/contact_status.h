@@ -160,14 +160,19 @@ namespace grainmpm
     /**
      * Changes an entry may make in a step before it is settled (settle()):
      * catches and releases, and changes between sticking and sliding
-     * (turns of the slip direction included). Long steps need several
-     * catches and releases: at 500 times the explicit step the first
-     * iterates of a step, far from its solution, catch and release a slot
-     * four times and more before it comes to rest, and a slot settled free
-     * early passes into its partner. Friction settles after two changes,
-     * which do not let grains pass into each other.
+     * (turns of the slip direction included). Long steps need more than
+     * one catch and release: the first iterates of a step, far from its
+     * solution, catch and release a slot several times before it comes to
+     * rest, and a slot settled free early passes into its partner. With
+     * each entry settled after two changes, a jammed stack at 170 times
+     * the explicit step stored 3 % less elastic energy than the explicit
+     * run; after four, as after six, it is within 0.5 %. Six cost two more
+     * Newton iterations wherever a few slots at the edge of a contact cycled
+     * between caught and released to the end, as in most steps of a
+     * jammed packing. Friction settles after two changes, which do not let
+     * grains pass into each other.
      */
-    static constexpr unsigned char max_contact_changes = 6;
+    static constexpr unsigned char max_contact_changes = 4;
     static constexpr unsigned char max_slip_changes    = 2;
 
     /** The changes of one entry in this step. */
