@@ -11,7 +11,7 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,21 +20,22 @@ namespace grainmpm
   namespace
   {
     /**
-     * f(row, column, value) for each stored entry of @p A, row by row, in
-     * global numbers (the rows of @p A are 0 to n - 1 in order).
+     * f(row, k, value) for each stored entry of @p A, row by row, k
+     * counting the entries (the rows of @p A are 0 to n - 1 in order).
      */
     template <typename Function>
     void
-    for_each_entry(const Epetra_CrsMatrix &A, const Function &f)
+    for_each_value(const Epetra_CrsMatrix &A, const Function &f)
     {
+      std::size_t k = 0;
       for (int r = 0; r < A.NumMyRows(); ++r)
         {
           int     length;
           double *values;
           int    *columns;
           A.ExtractMyRowView(r, length, values, columns);
-          for (int e = 0; e < length; ++e)
-            f(r, A.ColMap().GID(columns[e]), values[e]);
+          for (int e = 0; e < length; ++e, ++k)
+            f(r, k, values[e]);
         }
     }
   } // namespace
@@ -44,12 +45,23 @@ namespace grainmpm
   struct SparseCholesky::Data
   {
     cholmod_common common;
-    /** The upper triangle of (A + A^T) / 2 and its factor. */
+    /**
+     * The lower triangle of P (A + A^T) / 2 P^T, P the fill-reducing
+     * ordering, and its factor. The factor is analysed in the natural
+     * order of this matrix, so that CHOLMOD factorises it as it is
+     * instead of permuting (transposing) it at every factorisation.
+     */
     cholmod_sparse *symmetric = nullptr;
     cholmod_factor *factor    = nullptr;
     std::size_t     n         = 0;
-    /** Entries of A the pattern was built for. */
-    std::size_t n_entries = 0;
+    /**
+     * The pattern of A the analysis is for: the start of each row and the
+     * global column of each stored entry, in row order.
+     */
+    std::vector<std::size_t> row_start;
+    std::vector<int>         entry_columns;
+    /** The ordering: row k of the permuted matrix is row order[k] of A. */
+    std::vector<SuiteSparse_long> order;
     /** For each stored entry of A, in row order, its place in symmetric. */
     std::vector<SuiteSparse_long> position;
     /**
@@ -62,6 +74,8 @@ namespace grainmpm
     std::vector<int>    moved_rows;
     std::vector<int>    moved_columns;
     std::vector<double> moved_values;
+    /** The right-hand side with the moved couplings, in the order of A. */
+    mutable std::vector<double> moved_rhs;
     /** Right-hand side and workspaces of cholmod_l_solve2(). */
     cholmod_dense *rhs       = nullptr;
     cholmod_dense *solution  = nullptr;
@@ -97,56 +111,140 @@ namespace grainmpm
       cholmod_l_finish(&common);
     }
 
-    /** The pattern of symmetric, position, and the symbolic analysis. */
+    /**
+     * The ordering, the pattern of symmetric, position, and the symbolic
+     * analysis for the pattern of @p A, unless it is the pattern they are
+     * for already.
+     */
     void
     analyse(const Epetra_CrsMatrix &A);
+
+    /**
+     * The pattern of the triangle (stype 1: upper, -1: lower) of the
+     * matrix with the entries (row, column) of A, row and column mapped
+     * by @p map; with @p positions, each entry's place in it and zero
+     * values.
+     */
+    cholmod_sparse *
+    triangle(const std::function<SuiteSparse_long(int)> &map,
+             const int                                   stype,
+             std::vector<SuiteSparse_long>              *positions);
   };
+
+
+
+  cholmod_sparse *
+  SparseCholesky::Data::triangle(
+    const std::function<SuiteSparse_long(int)> &map,
+    const int                                   stype,
+    std::vector<SuiteSparse_long>              *positions)
+  {
+    const std::size_t n_entries = entry_columns.size();
+    cholmod_triplet  *triplets =
+      cholmod_l_allocate_triplet(n,
+                                 n,
+                                 n_entries,
+                                 stype,
+                                 positions != nullptr ? CHOLMOD_REAL :
+                                                        CHOLMOD_PATTERN,
+                                 &common);
+    AssertThrow(triplets != nullptr,
+                ExcMessage("The sparse Cholesky factorisation ran out of "
+                           "memory; set Linear solver/Preconditioner = AMG."));
+    auto *const rows    = static_cast<SuiteSparse_long *>(triplets->i);
+    auto *const columns = static_cast<SuiteSparse_long *>(triplets->j);
+    for (std::size_t r = 0; r < n; ++r)
+      for (std::size_t k = row_start[r]; k < row_start[r + 1]; ++k)
+        {
+          const SuiteSparse_long i = map(r), j = map(entry_columns[k]);
+          rows[k]    = stype > 0 ? std::min(i, j) : std::max(i, j);
+          columns[k] = stype > 0 ? std::max(i, j) : std::min(i, j);
+        }
+    if (positions != nullptr)
+      std::fill_n(static_cast<double *>(triplets->x), n_entries, 0.);
+    triplets->nnz = n_entries;
+    cholmod_sparse *matrix =
+      cholmod_l_triplet_to_sparse(triplets, n_entries, &common);
+    AssertThrow(matrix != nullptr,
+                ExcMessage("The sparse Cholesky factorisation ran out of "
+                           "memory; set Linear solver/Preconditioner = AMG."));
+    cholmod_l_sort(matrix, &common);
+    if (positions != nullptr)
+      {
+        const auto *const start = static_cast<SuiteSparse_long *>(matrix->p);
+        const auto *const index = static_cast<SuiteSparse_long *>(matrix->i);
+        positions->resize(n_entries);
+        for (std::size_t k = 0; k < n_entries; ++k)
+          (*positions)[k] = std::lower_bound(index + start[columns[k]],
+                                             index + start[columns[k] + 1],
+                                             rows[k]) -
+                            index;
+      }
+    cholmod_l_free_triplet(&triplets, &common);
+    return matrix;
+  }
 
 
 
   void
   SparseCholesky::Data::analyse(const Epetra_CrsMatrix &A)
   {
-    cholmod_l_free_sparse(&symmetric, &common);
-    cholmod_l_free_factor(&factor, &common);
     AssertThrow(A.RowMap().LinearMap() && A.RowMap().MinMyGID() == 0,
                 ExcMessage("The rows must be in their global order."));
-    n         = A.NumGlobalRows();
-    n_entries = A.NumMyNonzeros();
-    cholmod_triplet *triplets =
-      cholmod_l_allocate_triplet(n, n, n_entries, 1, CHOLMOD_REAL, &common);
-    AssertThrow(triplets != nullptr,
-                ExcMessage("The sparse Cholesky factorisation ran out of "
-                           "memory; set Linear solver/Preconditioner = AMG."));
-    auto *const rows    = static_cast<SuiteSparse_long *>(triplets->i);
-    auto *const columns = static_cast<SuiteSparse_long *>(triplets->j);
-    auto *const values  = static_cast<double *>(triplets->x);
-    std::size_t k       = 0;
-    for_each_entry(A, [&](const int i, const int j, const double) {
-      rows[k]    = std::min(i, j);
-      columns[k] = std::max(i, j);
-      values[k]  = 0.;
-      ++k;
-    });
-    triplets->nnz = k;
-    symmetric     = cholmod_l_triplet_to_sparse(triplets, k, &common);
-    AssertThrow(symmetric != nullptr,
-                ExcMessage("The sparse Cholesky factorisation ran out of "
-                           "memory; set Linear solver/Preconditioner = AMG."));
-    cholmod_l_sort(symmetric, &common);
+    // The pattern of A; the analysis of the same pattern is kept (the
+    // points of a slowly loaded packing keep their cells for many steps).
+    std::vector<std::size_t> new_row_start(A.NumMyRows() + 1, 0);
+    std::vector<int>         new_columns(A.NumMyNonzeros());
+    {
+      std::size_t k = 0;
+      for (int r = 0; r < A.NumMyRows(); ++r)
+        {
+          int     length;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(r, length, values, columns);
+          for (int e = 0; e < length; ++e, ++k)
+            new_columns[k] = A.ColMap().GID(columns[e]);
+          new_row_start[r + 1] = k;
+        }
+    }
+    if (factor != nullptr && new_row_start == row_start &&
+        new_columns == entry_columns)
+      return;
+    row_start.swap(new_row_start);
+    entry_columns.swap(new_columns);
+    n = A.NumGlobalRows();
+    cholmod_l_free_sparse(&symmetric, &common);
+    cholmod_l_free_factor(&factor, &common);
 
-    const auto *const start = static_cast<SuiteSparse_long *>(symmetric->p);
-    const auto *const index = static_cast<SuiteSparse_long *>(symmetric->i);
-    position.resize(k);
-    for (std::size_t e = 0; e < k; ++e)
-      position[e] = std::lower_bound(index + start[columns[e]],
-                                     index + start[columns[e] + 1],
-                                     rows[e]) -
-                    index;
-    cholmod_l_free_triplet(&triplets, &common);
+    // The fill-reducing ordering of the pattern of A + A^T.
+    {
+      cholmod_sparse *upper =
+        triangle([](const int i) { return i; }, 1, nullptr);
+      cholmod_factor *ordered = cholmod_l_analyze(upper, &common);
+      cholmod_l_free_sparse(&upper, &common);
+      AssertThrow(ordered != nullptr,
+                  ExcMessage("The sparse Cholesky analysis failed (CHOLMOD "
+                             "status " +
+                             std::to_string(common.status) +
+                             "); set Linear solver/Preconditioner = AMG."));
+      const auto *const perm = static_cast<SuiteSparse_long *>(ordered->Perm);
+      order.assign(perm, perm + n);
+      cholmod_l_free_factor(&ordered, &common);
+    }
+    std::vector<SuiteSparse_long> place(n);
+    for (std::size_t k = 0; k < n; ++k)
+      place[order[k]] = k;
 
-    factor = cholmod_l_analyze(symmetric, &common);
-    AssertThrow(factor != nullptr,
+    // The permuted matrix, analysed in its own order: the ordering above
+    // is postordered already.
+    symmetric = triangle([&](const int i) { return place[i]; }, -1, &position);
+    common.method[0].ordering = CHOLMOD_NATURAL;
+    common.postorder          = false;
+    factor                    = cholmod_l_analyze(symmetric, &common);
+    common.method[0].ordering = CHOLMOD_METIS;
+    common.postorder          = true;
+    AssertThrow(factor != nullptr && factor->ordering == CHOLMOD_NATURAL,
                 ExcMessage("The sparse Cholesky analysis failed (CHOLMOD "
                            "status " +
                            std::to_string(common.status) +
@@ -185,20 +283,23 @@ namespace grainmpm
                            "matrix on one MPI process."));
     if (new_pattern || data->factor == nullptr ||
         data->n != static_cast<std::size_t>(A.NumGlobalRows()) ||
-        data->n_entries != static_cast<std::size_t>(A.NumMyNonzeros()))
+        data->entry_columns.size() !=
+          static_cast<std::size_t>(A.NumMyNonzeros()))
       data->analyse(A);
+    const std::vector<int> &columns = data->entry_columns;
 
     // Rows without off-diagonal values are decoupled.
     const std::size_t  n         = data->n;
     std::vector<bool> &decoupled = data->decoupled;
     decoupled.assign(n, true);
     data->diagonal.assign(n, 0.);
-    for_each_entry(A, [&](const int i, const int j, const double value) {
-      if (i == j)
-        data->diagonal[i] = value;
-      else if (value != 0.)
-        decoupled[i] = false;
-    });
+    for_each_value(A,
+                   [&](const int i, const std::size_t k, const double value) {
+                     if (i == columns[k])
+                       data->diagonal[i] = value;
+                     else if (value != 0.)
+                       decoupled[i] = false;
+                   });
 
     // The values of (A + A^T) / 2 without the couplings of decoupled rows
     // and columns; those of the other rows go to the right-hand side.
@@ -209,20 +310,20 @@ namespace grainmpm
     data->moved_rows.clear();
     data->moved_columns.clear();
     data->moved_values.clear();
-    std::size_t k = 0;
-    for_each_entry(A, [&](const int i, const int j, const double value) {
-      if (i == j)
-        values[data->position[k]] += value;
-      else if (!decoupled[i] && !decoupled[j])
-        values[data->position[k]] += 0.5 * value;
-      else if (decoupled[j] && value != 0.)
-        {
-          data->moved_rows.push_back(i);
-          data->moved_columns.push_back(j);
-          data->moved_values.push_back(value);
-        }
-      ++k;
-    });
+    for_each_value(A,
+                   [&](const int i, const std::size_t k, const double value) {
+                     const int j = columns[k];
+                     if (i == j)
+                       values[data->position[k]] += value;
+                     else if (!decoupled[i] && !decoupled[j])
+                       values[data->position[k]] += 0.5 * value;
+                     else if (decoupled[j] && value != 0.)
+                       {
+                         data->moved_rows.push_back(i);
+                         data->moved_columns.push_back(j);
+                         data->moved_values.push_back(value);
+                       }
+                   });
 
     cholmod_common &c = data->common;
     cholmod_l_factorize(data->symmetric, data->factor, &c);
@@ -245,15 +346,19 @@ namespace grainmpm
     Assert(data->factor != nullptr, ExcMessage("factorize() first."));
     // A decoupled row j gives x_j = b_j / a_jj (the factor holds a_jj
     // there, so the solve below gives it back); the other rows move their
-    // couplings to these x_j to the right-hand side.
-    auto *const rhs = static_cast<double *>(data->rhs->x);
-    std::memcpy(rhs, b, data->n * sizeof(double));
+    // couplings to these x_j to the right-hand side. The factor is that of
+    // the permuted matrix: b and x are permuted here.
+    std::vector<double> &moved = data->moved_rhs;
+    moved.assign(b, b + data->n);
     for (std::size_t k = 0; k < data->moved_values.size(); ++k)
       {
         const auto j = data->moved_columns[k];
-        rhs[data->moved_rows[k]] -=
+        moved[data->moved_rows[k]] -=
           data->moved_values[k] * b[j] / data->diagonal[j];
       }
+    auto *const rhs = static_cast<double *>(data->rhs->x);
+    for (std::size_t k = 0; k < data->n; ++k)
+      rhs[k] = moved[data->order[k]];
     cholmod_l_solve2(CHOLMOD_A,
                      data->factor,
                      data->rhs,
@@ -263,6 +368,8 @@ namespace grainmpm
                      &data->workspace,
                      &data->extra,
                      &data->common);
-    std::memcpy(x, data->solution->x, data->n * sizeof(double));
+    const auto *const solution = static_cast<double *>(data->solution->x);
+    for (std::size_t k = 0; k < data->n; ++k)
+      x[data->order[k]] = solution[k];
   }
 } // namespace grainmpm
