@@ -92,6 +92,8 @@ namespace grainmpm
       }
 
     status.reinit(contact, *layout);
+    ++status_generation;
+    cached_generation = 0;
     // The contact inequality: the theta velocity approaches at most at the
     // speed that closes the gap within the step.
     status.keep_allowed_approach = true;
@@ -132,7 +134,7 @@ namespace grainmpm
     {
       VectorType raw;
       raw.reinit(velocities, true);
-      evaluate(velocities, raw, false, true);
+      raw_residual_at(velocities, raw);
       trial_velocities -= raw;
       trial_velocities.sadd(theta, 1. - theta, *old_velocities);
     }
@@ -153,6 +155,7 @@ namespace grainmpm
       }
 
     const ContactStatus<dim> old_status = status;
+    ++status_generation;
     status.freeze(contact,
                   *layout,
                   *masses,
@@ -326,6 +329,7 @@ namespace grainmpm
             velocities.local_element(k) - old_velocities->local_element(k);
         mass_matrix->vmult(work_inertia, work_increment);
       }
+    cached_generation = 0;
     if (inverted)
       {
         // NaN on this rank makes every rank's norm NaN.
@@ -334,9 +338,35 @@ namespace grainmpm
       }
 
     raw_residual(velocities, residual);
+    if (!simplified)
+      {
+        cached_raw_residual = residual;
+        cached_velocities   = velocities;
+        cached_generation   = status_generation;
+      }
     if (raw || !constrained)
       return;
     constrain_residual(velocities, residual, simplified);
+  }
+
+
+
+  template <int dim>
+  void
+  ThetaResidual<dim>::raw_residual_at(const VectorType &velocities,
+                                      VectorType       &raw) const
+  {
+    // The decision is collective: evaluate() is.
+    const unsigned int n      = velocities.locally_owned_size();
+    const bool         cached = cached_generation == status_generation &&
+                        cached_velocities.locally_owned_size() == n &&
+                        std::equal(velocities.begin(),
+                                   velocities.begin() + n,
+                                   cached_velocities.begin());
+    if (Utilities::MPI::min(cached ? 1U : 0U, communicator()) == 1U)
+      raw = cached_raw_residual;
+    else
+      evaluate(velocities, raw, false, true);
   }
 
 

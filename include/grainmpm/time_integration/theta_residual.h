@@ -174,6 +174,7 @@ namespace grainmpm
     start_status_from(const HeldContactStatus<dim> &held)
     {
       held.apply(status, *layout, contact.get_grid());
+      ++status_generation;
     }
 
     /** evaluate(@p x, @p r). */
@@ -362,6 +363,8 @@ namespace grainmpm
 
     /** The frozen contact and wall status. */
     ContactStatus<dim> status;
+    /** Counts the changes of #status (and of the step, reinit()). */
+    unsigned long status_generation = 1;
 
     /** The hysteresis band of the status decisions. */
     double status_band = 0.;
@@ -379,6 +382,25 @@ namespace grainmpm
     mutable VectorType    work_increment;
     mutable VectorType    work_inertia;
     mutable unsigned long evaluation_count = 0;
+
+    /**
+     * The raw residual of the last full evaluation, the velocities it was
+     * evaluated at and the #status_generation it was evaluated with (zero:
+     * none). freeze_status() at the iterate the line search accepted,
+     * whose residual was the last one evaluated, takes its raw residual
+     * from here instead of evaluating it again.
+     */
+    mutable VectorType    cached_raw_residual;
+    mutable VectorType    cached_velocities;
+    mutable unsigned long cached_generation = 0;
+
+    /**
+     * The raw residual at @p velocities with the present status into
+     * @p raw: the cached one if it is for these velocities and this status
+     * (on every rank), else evaluate().
+     */
+    void
+    raw_residual_at(const VectorType &velocities, VectorType &raw) const;
   };
 
 
