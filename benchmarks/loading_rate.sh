@@ -48,7 +48,9 @@
 # solver/Contact status from last step; default that of the code),
 # LIGHT_FIELD_FRACTION (all runs' Contact/Light field fraction; default
 # that of the code), PRECONDITIONER (the implicit runs' Linear
-# solver/Preconditioner; default that of the case, AMG).
+# solver/Preconditioner; default that of the case, AMG),
+# MAXIMUM_DISPLACEMENT (the implicit runs' Time stepping/Maximum
+# displacement per step, 0 for no bound; default that of the code).
 # shellcheck source=common/run_case.sh
 source "$(dirname "$0")/common/run_case.sh" "$@"
 
@@ -172,6 +174,9 @@ if [ -n "${STEP_ERROR:-}" ]; then
 fi
 if [ -n "${STATUS_FROM_LAST:-}" ]; then
   tolerance_text="$tolerance_text\nsubsection Nonlinear solver\n  set Contact status from last step = $STATUS_FROM_LAST\nend"
+fi
+if [ -n "${MAXIMUM_DISPLACEMENT:-}" ]; then
+  tolerance_text="$tolerance_text\nsubsection Time stepping\n  set Maximum displacement per step = $MAXIMUM_DISPLACEMENT\nend"
 fi
 
 echo "| packing | V/c | friction | run | wall time [s] | steps | rejected | fallback steps | Newton/step | GMRES/Newton | residual evaluations/step | platen work | / reference | mean platen force | / reference | largest deviation over tenths / mean | balance / platen work | median I | median step / explicit step |"
