@@ -20,12 +20,13 @@ namespace grainmpm
   namespace
   {
     /**
-     * f(row, k, value) for each stored entry of @p A, row by row, k
-     * counting the entries (the rows of @p A are 0 to n - 1 in order).
+     * f(row, k, local column, value) for each stored entry of @p A, row by
+     * row, k counting the entries (the rows of @p A are 0 to n - 1 in
+     * order).
      */
     template <typename Function>
     void
-    for_each_value(const Epetra_CrsMatrix &A, const Function &f)
+    for_each_entry(const Epetra_CrsMatrix &A, const Function &f)
     {
       std::size_t k = 0;
       for (int r = 0; r < A.NumMyRows(); ++r)
@@ -35,7 +36,7 @@ namespace grainmpm
           int    *columns;
           A.ExtractMyRowView(r, length, values, columns);
           for (int e = 0; e < length; ++e, ++k)
-            f(r, k, values[e]);
+            f(r, k, columns[e], values[e]);
         }
     }
   } // namespace
@@ -191,23 +192,16 @@ namespace grainmpm
   {
     AssertThrow(A.RowMap().LinearMap() && A.RowMap().MinMyGID() == 0,
                 ExcMessage("The rows must be in their global order."));
-    // The pattern of A; the analysis of the same pattern is kept (the
-    // points of a slowly loaded packing keep their cells for many steps).
+    // The pattern of A; the analysis of the pattern analysed last is kept.
     std::vector<std::size_t> new_row_start(A.NumMyRows() + 1, 0);
     std::vector<int>         new_columns(A.NumMyNonzeros());
-    {
-      std::size_t k = 0;
-      for (int r = 0; r < A.NumMyRows(); ++r)
-        {
-          int     length;
-          double *values;
-          int    *columns;
-          A.ExtractMyRowView(r, length, values, columns);
-          for (int e = 0; e < length; ++e, ++k)
-            new_columns[k] = A.ColMap().GID(columns[e]);
-          new_row_start[r + 1] = k;
-        }
-    }
+    for_each_entry(
+      A, [&](const int r, const std::size_t k, const int column, const double) {
+        new_columns[k]       = A.ColMap().GID(column);
+        new_row_start[r + 1] = k + 1;
+      });
+    for (int r = 0; r < A.NumMyRows(); ++r)
+      new_row_start[r + 1] = std::max(new_row_start[r + 1], new_row_start[r]);
     if (factor != nullptr && new_row_start == row_start &&
         new_columns == entry_columns)
       return;
@@ -293,13 +287,13 @@ namespace grainmpm
     std::vector<bool> &decoupled = data->decoupled;
     decoupled.assign(n, true);
     data->diagonal.assign(n, 0.);
-    for_each_value(A,
-                   [&](const int i, const std::size_t k, const double value) {
-                     if (i == columns[k])
-                       data->diagonal[i] = value;
-                     else if (value != 0.)
-                       decoupled[i] = false;
-                   });
+    for_each_entry(
+      A, [&](const int i, const std::size_t k, const int, const double value) {
+        if (i == columns[k])
+          data->diagonal[i] = value;
+        else if (value != 0.)
+          decoupled[i] = false;
+      });
 
     // The values of (A + A^T) / 2 without the couplings of decoupled rows
     // and columns; those of the other rows go to the right-hand side.
@@ -310,20 +304,20 @@ namespace grainmpm
     data->moved_rows.clear();
     data->moved_columns.clear();
     data->moved_values.clear();
-    for_each_value(A,
-                   [&](const int i, const std::size_t k, const double value) {
-                     const int j = columns[k];
-                     if (i == j)
-                       values[data->position[k]] += value;
-                     else if (!decoupled[i] && !decoupled[j])
-                       values[data->position[k]] += 0.5 * value;
-                     else if (decoupled[j] && value != 0.)
-                       {
-                         data->moved_rows.push_back(i);
-                         data->moved_columns.push_back(j);
-                         data->moved_values.push_back(value);
-                       }
-                   });
+    for_each_entry(
+      A, [&](const int i, const std::size_t k, const int, const double value) {
+        const int j = columns[k];
+        if (i == j)
+          values[data->position[k]] += value;
+        else if (!decoupled[i] && !decoupled[j])
+          values[data->position[k]] += 0.5 * value;
+        else if (decoupled[j] && value != 0.)
+          {
+            data->moved_rows.push_back(i);
+            data->moved_columns.push_back(j);
+            data->moved_values.push_back(value);
+          }
+      });
 
     cholmod_common &c = data->common;
     cholmod_l_factorize(data->symmetric, data->factor, &c);
