@@ -181,7 +181,7 @@ namespace grainmpm
 
     // Momentum-exact end velocity v* = V - R_raw(V) = v^n + dt (f / m + g),
     // projected with the converged status.
-    residual.evaluate(unknowns, final_residual, false, true);
+    residual.raw_residual_at(unknowns, final_residual);
     unknowns -= final_residual;
     statistics.events.n_contact_nodes = residual.project(unknowns,
                                                          state.velocities_new,

@@ -155,7 +155,6 @@ namespace grainmpm
       }
 
     const ContactStatus<dim> old_status = status;
-    ++status_generation;
     status.freeze(contact,
                   *layout,
                   *masses,
@@ -164,6 +163,16 @@ namespace grainmpm
                   mass_threshold,
                   status_band,
                   !monotone);
+    // A new generation unless the status evaluate() applies is the same
+    // (the frozen v_ref enters only the simplified map, which is not
+    // cached).
+    if (old_status.slot_state != status.slot_state ||
+        old_status.slip_directions != status.slip_directions ||
+        old_status.slot_kept != status.slot_kept ||
+        old_status.wall_state != status.wall_state ||
+        old_status.wall_slip_directions != status.wall_slip_directions ||
+        old_status.wall_kept != status.wall_kept)
+      ++status_generation;
     // The change on any rank (the solver's decisions must agree): the
     // number of slots and wall entries whose discrete state changed, or
     // whether a slip direction did.

@@ -242,6 +242,16 @@ namespace grainmpm
              const bool        raw        = false) const;
 
     /**
+     * evaluate(@p velocities, @p raw, false, true), the raw residual with
+     * the present status, taken from the last full evaluation if that was
+     * at these velocities with this status (on every rank): the iterate
+     * the line search accepted, at the status decision after it and at
+     * the end of a converged solve.
+     */
+    void
+    raw_residual_at(const VectorType &velocities, VectorType &raw) const;
+
+    /**
      * The contact- and wall-projected end velocities Pi_theta(@p
      * velocities) with the frozen status: the projection acts on the theta
      * velocity. Returns the number of nodes where contact is active. With
@@ -363,7 +373,10 @@ namespace grainmpm
 
     /** The frozen contact and wall status. */
     ContactStatus<dim> status;
-    /** Counts the changes of #status (and of the step, reinit()). */
+    /**
+     * Counts the changes of #status (and of the step, reinit()); a
+     * decision that leaves the status as it was does not count.
+     */
     unsigned long status_generation = 1;
 
     /** The hysteresis band of the status decisions. */
@@ -386,21 +399,11 @@ namespace grainmpm
     /**
      * The raw residual of the last full evaluation, the velocities it was
      * evaluated at and the #status_generation it was evaluated with (zero:
-     * none). freeze_status() at the iterate the line search accepted,
-     * whose residual was the last one evaluated, takes its raw residual
-     * from here instead of evaluating it again.
+     * none), for raw_residual_at().
      */
     mutable VectorType    cached_raw_residual;
     mutable VectorType    cached_velocities;
     mutable unsigned long cached_generation = 0;
-
-    /**
-     * The raw residual at @p velocities with the present status into
-     * @p raw: the cached one if it is for these velocities and this status
-     * (on every rank), else evaluate().
-     */
-    void
-    raw_residual_at(const VectorType &velocities, VectorType &raw) const;
   };
 
 
