@@ -9,8 +9,10 @@
 // first and moved to the right-hand side; (2) new values in the same pattern
 // (the ordering kept) again to round-off; (3) with a non-symmetric part the
 // solve inverts (A + A^T) / 2; (4) a matrix whose symmetric part is indefinite
-// is reported (factorize() returns false) instead of giving nonsense; (5) it
-// keeps OpenMP to one thread (grainmpm runs one thread per MPI process).
+// is reported (factorize() returns false) instead of giving nonsense; (5) a
+// pattern flagged new that is the one analysed last keeps its analysis and
+// solves to round-off after the failed factorisation; (6) it keeps OpenMP to
+// one thread (grainmpm runs one thread per MPI process).
 
 #include <grainmpm/solvers/sparse_cholesky.h>
 
@@ -131,6 +133,8 @@ main(int argc, char **argv)
   report("non-symmetric part", A, cholesky, false, false);
   fill(A, 1., -0.5, 1e-9, 1., 0.);
   report("indefinite", A, cholesky, true, true);
+  fill(A, 2., 0.3, 1e-9, 1., 0.);
+  report("same pattern flagged new (analysis kept)", A, cholesky, true, true);
   deallog << "size: " << cholesky.size() << std::endl;
   deallog << "active OpenMP levels at most: " << omp_get_max_active_levels()
           << std::endl;
