@@ -125,6 +125,69 @@ namespace grainmpm
 
 
 
+  template <int dim>
+  double
+  normal_constraint_dissipation(
+    const GrainFieldLayout<dim>                      &layout,
+    const std::vector<bool>                          &field_is_rigid,
+    const LinearAlgebra::distributed::Vector<double> &masses,
+    const LinearAlgebra::distributed::Vector<double> &normals,
+    const LinearAlgebra::distributed::Vector<double> &before,
+    const LinearAlgebra::distributed::Vector<double> &after,
+    const LinearAlgebra::distributed::Vector<double> &rate)
+  {
+    double dissipation = 0.;
+    for (unsigned int node = 0; node < layout.n_nodes(); ++node)
+      {
+        const unsigned int begin = layout.node_slots_begin(node);
+        const unsigned int end   = layout.node_slots_end(node);
+        Tensor<1, dim>     reference, momentum;
+        double             mass       = 0.;
+        bool               has_rigid  = false;
+        bool               has_change = false;
+        for (unsigned int s = begin; s < end; ++s)
+          if (field_is_rigid[layout.field(s)])
+            {
+              reference = get_slot_vector<dim>(rate, s);
+              has_rigid = true;
+            }
+          else
+            {
+              momentum +=
+                masses.local_element(s) * get_slot_vector<dim>(rate, s);
+              mass += masses.local_element(s);
+              has_change = has_change || get_slot_vector<dim>(after, s) !=
+                                           get_slot_vector<dim>(before, s);
+            }
+        if (!has_change)
+          continue;
+        if (!has_rigid && end - begin > 1 && mass > 0.)
+          reference = momentum / mass;
+        for (unsigned int s = begin; s < end; ++s)
+          {
+            if (field_is_rigid[layout.field(s)])
+              continue;
+            // A slot without a contact normal (a wall's node): along its
+            // impulse.
+            const Tensor<1, dim> change =
+              get_slot_vector<dim>(after, s) - get_slot_vector<dim>(before, s);
+            Tensor<1, dim> normal = get_slot_vector<dim>(normals, s);
+            if (!(normal.norm() > 0.))
+              normal = change;
+            const double length = normal.norm();
+            if (!(length > 0.))
+              continue;
+            normal /= length;
+            const double impulse = masses.local_element(s) * (change * normal);
+            dissipation -=
+              impulse * ((get_slot_vector<dim>(rate, s) - reference) * normal);
+          }
+      }
+    return dissipation;
+  }
+
+
+
   template struct ConstraintImpulses<2>;
   template struct ConstraintImpulses<3>;
   template std::pair<double, double>
@@ -141,4 +204,22 @@ namespace grainmpm
                      const LinearAlgebra::distributed::Vector<double> &,
                      const LinearAlgebra::distributed::Vector<double> &,
                      const LinearAlgebra::distributed::Vector<double> &);
+  template double
+  normal_constraint_dissipation<2>(
+    const GrainFieldLayout<2> &,
+    const std::vector<bool> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &);
+  template double
+  normal_constraint_dissipation<3>(
+    const GrainFieldLayout<3> &,
+    const std::vector<bool> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &,
+    const LinearAlgebra::distributed::Vector<double> &);
 } // namespace grainmpm

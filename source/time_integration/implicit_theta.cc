@@ -194,6 +194,13 @@ namespace grainmpm
       layout, state.masses, unknowns, state.velocities_new, theta_velocities);
     statistics.ledger.friction_work += friction_work;
     statistics.ledger.boundary_work += boundary_work;
+    const double normal_dissipation =
+      contact.normal_dissipation(layout,
+                                 state.masses,
+                                 state.normals,
+                                 unknowns,
+                                 state.velocities_new,
+                                 theta_velocities);
 
     // Grid energies before and after (deformable slots).
     const double kinetic_old =
@@ -204,6 +211,7 @@ namespace grainmpm
                                                  kinetic_old,
                                                  kinetic_new,
                                                  friction_work - boundary_work,
+                                                 normal_dissipation,
                                                  dt);
         !failure.empty())
       {
@@ -264,6 +272,7 @@ namespace grainmpm
     const double                     kinetic_old,
     const double                     kinetic_new,
     const double                     constraint_work,
+    const double                     normal_dissipation,
     const double                     dt) const
   {
     const TimeSteppingParameters &stepping = parameters.time_stepping;
@@ -272,25 +281,39 @@ namespace grainmpm
       return "";
     // The grid step's share of the energy balance, as the ledger books it
     // after the step (theory section 14), from a trial constitutive update.
-    double energies[5] = {kinetic_old,
+    double energies[6] = {kinetic_old,
                           kinetic_new,
                           residual.old_strain_energy(),
                           0.,
-                          constraint_work};
+                          constraint_work,
+                          normal_dissipation};
     energies[3]        = transfer.trial_strain_energy(particle_handler,
                                                theta_velocities,
                                                dt,
                                                energies[4]);
-    Utilities::MPI::sum(ArrayView<const double>(energies, 5),
+    Utilities::MPI::sum(ArrayView<const double>(energies, 6),
                         transfer.get_layout().get_communicator(),
-                        ArrayView<double>(energies, 5));
+                        ArrayView<double>(energies, 6));
     const double before  = energies[0] + energies[2];
     const double after   = energies[1] + energies[3];
     const double created = after - before + energies[4];
-    if (!(created > stepping.energy_error * std::max(before, after)))
+    const double energy  = std::max(before, after);
+    // A step that stops an approach at once (an impact the step does not
+    // resolve) loses the energy of the approach to the normal reactions.
+    if (energies[5] > stepping.energy_error * energy)
+      {
+        std::ostringstream message;
+        message << "the normal contact reactions took " << energies[5] / energy
+                << " of the grid energy (an impact the step does not "
+                   "resolve), more than Time stepping/Energy error per "
+                   "step = "
+                << stepping.energy_error;
+        return message.str();
+      }
+    if (!(created > stepping.energy_error * energy))
       return "";
     std::ostringstream message;
-    message << "the step created " << created / std::max(before, after)
+    message << "the step created " << created / energy
             << " of the grid energy, more than Time stepping/Energy error "
                "per step = "
             << stepping.energy_error;

@@ -83,8 +83,9 @@ namespace grainmpm
       "value, by the same rule as a cut step grows back (min(2, N_t / N) "
       "after Steps before growth easy steps), as long as no material point "
       "moves more than Maximum displacement per step in a step; a grown "
-      "step that creates more than Energy error per step, or fails, is "
-      "halved. For slow, quasi-static loading, where the nominal step of "
+      "step that creates more than Energy error per step, or loses more "
+      "than it to the normal contact reactions, or fails, is halved. For "
+      "slow, quasi-static loading, where the nominal step of "
       "the wave speed is far smaller than what the loading needs "
       "(doc/theory.md section 12). Zero means the nominal step is the "
       "largest. Units: time.",
@@ -109,11 +110,13 @@ namespace grainmpm
       "change of the kinetic plus elastic energy of the deformable grains "
       "on the grid, plus the friction and plastic work, minus the work of "
       "rigid grains and walls; theta = 1/2 conserves it for elastic motion "
-      "with contact that holds) is rejected and retried with half the "
-      "step, as a step whose Newton solve fails. Large steps over a change "
-      "of the contacts can create energy that the Newton tolerance does not "
-      "see; this check makes the steps shrink there. Zero means no such "
-      "check. Dimensionless.",
+      "with contact that holds), or whose normal contact reactions take "
+      "more than this fraction out of it (a step that stops a whole impact "
+      "at once), is rejected and retried with half the step, as a step "
+      "whose Newton solve fails. Large steps over a change of the contacts "
+      "can create energy that the Newton tolerance does not see, and steps "
+      "longer than a collision make it inelastic; this check makes the "
+      "steps shrink there. Zero means no such check. Dimensionless.",
       Patterns::Double(0.));
     prm.add_parameter(
       "Step error tolerance",

@@ -6,13 +6,23 @@
 //
 // Reference: the explicit leapfrog, update stress last, at CFL 0.25. The
 // implicit runs start from their nominal step, CFL 7.5 (30 times the
-// explicit step), with Maximum time step 300 times the explicit step and
-// the other entries at their defaults, then Step error tolerance 0.02 and
-// 0.1 instead of the default 0.05. At the default the steps must grow
-// (median step above the nominal one; measured: 47 times the explicit
-// step) and the platen work must stay within 2 % of the explicit one
-// (measured: +1.2 %); the error of the platen work must be smaller at
-// 0.02 than at 0.1 (measured: 0.0 % and +2.9 %), with shorter steps.
+// explicit step), with Maximum time step 300 times the explicit step.
+//
+// At the defaults the platen work must stay within 2 % of the explicit one
+// (measured: +0.4 %). The stack vibrates (its kinetic energy is a few per
+// cent of the grid energy), and a step longer than the nominal one loses
+// more than Energy error per step (1e-3) of the grid energy to the normal
+// contact reactions, so the steps stay at the nominal one (median 30 times
+// the explicit step, 19 rejected steps); without that bound they grow to
+// a median of 54 at +1.4 %.
+//
+// The step error estimate is checked with that bound loosened to Energy
+// error per step = 0.01: at the default Step error tolerance 0.05 the
+// steps must grow (median step above the nominal one; measured: 53 times
+// the explicit step, platen work +1.1 %), and the error of the platen work
+// must be smaller at 0.02 than at 0.1 (measured: +0.4 % and +3.2 %), with
+// shorter steps (30 and 75 times the explicit step).
+//
 // Also checked: no step is longer than the maximum, and, as in the
 // fixed-step runs of jammed_stack_01, the work of the constraints (booked
 // as friction work) is not negative.
@@ -66,8 +76,6 @@ main(int argc, char **argv)
   std::vector<double> steps(energy.at("dt").begin() + 1, energy.at("dt").end());
   const double        largest =
     *std::max_element(steps.begin(), steps.end()) / stack_explicit_step;
-  deallog << "grown: median step above the nominal one: "
-          << (median_step(energy) > 30. ? "yes" : "no") << std::endl;
   deallog << "grown: no step beyond the maximum: "
           << (largest <= 300. * (1. + 1e-12) ? "yes" : "no") << std::endl;
   deallog << "grown: platen work within 2 % of explicit: "
@@ -76,8 +84,18 @@ main(int argc, char **argv)
           << (energy.at("friction_work").back() >= 0. ? "yes" : "no")
           << std::endl;
 
-  const auto tight = grown("tight", "  set Step error tolerance = 0.02\n");
-  const auto loose = grown("loose", "  set Step error tolerance = 0.1\n");
+  const std::string loosened = "  set Energy error per step = 0.01\n";
+  const auto        medium   = grown("medium", loosened);
+  deallog << "Energy error per step 0.01: median step above the nominal "
+             "one: "
+          << (median_step(medium) > 30. ? "yes" : "no") << std::endl;
+  deallog << "Energy error per step 0.01: platen work within 2 % of "
+             "explicit: "
+          << (work_error(medium) < 0.02 ? "yes" : "no") << std::endl;
+  const auto tight =
+    grown("tight", loosened + "  set Step error tolerance = 0.02\n");
+  const auto loose =
+    grown("loose", loosened + "  set Step error tolerance = 0.1\n");
   deallog << "Step error tolerance 0.02 against 0.1: shorter steps: "
           << (median_step(tight) < median_step(loose) ? "yes" : "no")
           << std::endl;

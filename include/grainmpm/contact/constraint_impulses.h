@@ -110,6 +110,29 @@ namespace grainmpm
                   const LinearAlgebra::distributed::Vector<double> &before,
                   const LinearAlgebra::distributed::Vector<double> &after,
                   const LinearAlgebra::distributed::Vector<double> &rate);
+
+
+
+  /**
+   * The energy the normal reactions of the constraints that changed
+   * @p before into @p after take out on the velocities @p rate: at each
+   * node, minus the sum over the deformable slots of the normal impulse
+   * times the normal velocity relative to the node's reference (the rigid
+   * slot's velocity, else the mass-weighted mean of the deformable slots,
+   * else rest: a wall), along the slot's unit normal in @p normals.
+   * Positive where the reactions stop an approach, as when a step catches
+   * a whole impact at once.
+   */
+  template <int dim>
+  double
+  normal_constraint_dissipation(
+    const GrainFieldLayout<dim>                      &layout,
+    const std::vector<bool>                          &field_is_rigid,
+    const LinearAlgebra::distributed::Vector<double> &masses,
+    const LinearAlgebra::distributed::Vector<double> &normals,
+    const LinearAlgebra::distributed::Vector<double> &before,
+    const LinearAlgebra::distributed::Vector<double> &after,
+    const LinearAlgebra::distributed::Vector<double> &rate);
 } // namespace grainmpm
 
 #endif

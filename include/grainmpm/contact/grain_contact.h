@@ -159,6 +159,24 @@ namespace grainmpm
     }
 
     /**
+     * The energy the normal reactions that changed @p before into @p after
+     * take out on the velocities @p rate
+     * (normal_constraint_dissipation() with the rigid fields of the
+     * contact).
+     */
+    double
+    normal_dissipation(const GrainFieldLayout<dim> &layout,
+                       const VectorType            &masses,
+                       const VectorType            &normals,
+                       const VectorType            &before,
+                       const VectorType            &after,
+                       const VectorType            &rate) const
+    {
+      return normal_constraint_dissipation(
+        layout, field_is_rigid, masses, normals, before, after, rate);
+    }
+
+    /**
      * The options of the contact law: the contact model and friction
      * coefficient of the parameters, with @p mass_threshold and the
      * hysteresis band @p band.

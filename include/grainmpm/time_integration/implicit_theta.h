@@ -132,17 +132,21 @@ namespace grainmpm
     /**
      * With `Time stepping/Maximum time step`: why the converged step, if
      * longer than nominal_step_at_rest, is rejected for the energy its
-     * grid step creates (`Energy error per step`), or an empty string.
-     * @p kinetic_old and @p kinetic_new are the local grid kinetic
+     * grid step creates or its normal contact reactions take out (more
+     * than `Energy error per step` of the grid energy), or an empty
+     * string. @p kinetic_old and @p kinetic_new are the local grid kinetic
      * energies, @p constraint_work the local friction less boundary work
-     * of the step; the new elastic energy comes from a trial constitutive
-     * update with the theta velocities.
+     * and @p normal_dissipation the local energy of the normal reactions
+     * (normal_constraint_dissipation()) of the step; the new elastic
+     * energy comes from a trial constitutive update with the theta
+     * velocities.
      */
     std::string
     energy_error(Particles::ParticleHandler<dim> &particle_handler,
                  const double                     kinetic_old,
                  const double                     kinetic_new,
                  const double                     constraint_work,
+                 const double                     normal_dissipation,
                  const double                     dt) const;
 
     const Parameters<dim> &parameters;
