@@ -194,13 +194,6 @@ namespace grainmpm
       layout, state.masses, unknowns, state.velocities_new, theta_velocities);
     statistics.ledger.friction_work += friction_work;
     statistics.ledger.boundary_work += boundary_work;
-    const double normal_dissipation =
-      contact.normal_dissipation(layout,
-                                 state.masses,
-                                 state.normals,
-                                 unknowns,
-                                 state.velocities_new,
-                                 theta_velocities);
 
     // Grid energies before and after (deformable slots).
     const double kinetic_old =
@@ -211,7 +204,6 @@ namespace grainmpm
                                                  kinetic_old,
                                                  kinetic_new,
                                                  friction_work - boundary_work,
-                                                 normal_dissipation,
                                                  dt);
         !failure.empty())
       {
@@ -272,7 +264,6 @@ namespace grainmpm
     const double                     kinetic_old,
     const double                     kinetic_new,
     const double                     constraint_work,
-    const double                     normal_dissipation,
     const double                     dt) const
   {
     const TimeSteppingParameters &stepping = parameters.time_stepping;
@@ -286,7 +277,12 @@ namespace grainmpm
                           residual.old_strain_energy(),
                           0.,
                           constraint_work,
-                          normal_dissipation};
+                          contact.normal_dissipation(transfer.get_layout(),
+                                                     state.masses,
+                                                     state.normals,
+                                                     unknowns,
+                                                     state.velocities_new,
+                                                     theta_velocities)};
     energies[3]        = transfer.trial_strain_energy(particle_handler,
                                                theta_velocities,
                                                dt,

@@ -136,17 +136,16 @@ namespace grainmpm
      * than `Energy error per step` of the grid energy), or an empty
      * string. @p kinetic_old and @p kinetic_new are the local grid kinetic
      * energies, @p constraint_work the local friction less boundary work
-     * and @p normal_dissipation the local energy of the normal reactions
-     * (normal_constraint_dissipation()) of the step; the new elastic
-     * energy comes from a trial constitutive update with the theta
-     * velocities.
+     * of the step; the new elastic energy comes from a trial constitutive
+     * update with the theta velocities, the energy of the normal reactions
+     * from GrainContact::normal_dissipation() with the projection of the
+     * end velocity.
      */
     std::string
     energy_error(Particles::ParticleHandler<dim> &particle_handler,
                  const double                     kinetic_old,
                  const double                     kinetic_new,
                  const double                     constraint_work,
-                 const double                     normal_dissipation,
                  const double                     dt) const;
 
     const Parameters<dim> &parameters;
