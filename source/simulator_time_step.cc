@@ -17,7 +17,8 @@ namespace grainmpm
   StepStatistics
   Simulator<dim>::advance_one_step(DiscreteTime &time)
   {
-    unsigned int rejected = 0;
+    unsigned int rejected      = 0;
+    unsigned int failed_solves = 0;
     for (;;)
       {
         StepStatistics statistics;
@@ -42,10 +43,18 @@ namespace grainmpm
 
         // Rejected: the particles are untouched; halve dt and retry.
         ++rejected;
-        // The retry decides its contact status afresh: a start from the
-        // last step's status that led the solve astray (a fast impact at a
-        // long step) is not tried twice.
-        if (HeldContactStatus<dim> *held = stepper->get_held_contact_status())
+        // The retry starts from the last step's contact status again: a
+        // status decided afresh at a long step, on v^n + dt f / m, catches
+        // and releases thousands of slots, and the retry fails too. The
+        // status is dropped where it may be what leads the solve astray (a
+        // fast impact at a long step): when the residual with it was not
+        // finite at the first iterate, and after two failed solves. A solve
+        // that converged and was rejected for its accuracy does not count.
+        if (!statistics.solver.rejected_for_accuracy)
+          ++failed_solves;
+        if (HeldContactStatus<dim> *held = stepper->get_held_contact_status();
+            held != nullptr &&
+            (failed_solves >= 2 || statistics.solver.failed_at_first_iterate))
           held->clear();
         const double failed_step = time.get_next_step_size();
         pcout << "  step " << step_offset + time.get_step_number() + 1

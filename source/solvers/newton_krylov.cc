@@ -268,7 +268,10 @@ namespace grainmpm
 
     std::string why = initialize(problem, x, state);
     if (!why.empty())
-      return finish(false, why);
+      {
+        statistics.failed_at_first_iterate = true;
+        return finish(false, why);
+      }
     log_iteration(statistics, state);
     for (unsigned int k = 0;; ++k)
       {

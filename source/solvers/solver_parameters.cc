@@ -143,15 +143,15 @@ namespace grainmpm
       "reaction would pull, while the others are caught if they pass the "
       "approach their gap allows. Otherwise every step decides its status "
       "afresh at the first iterate, on the velocities the momentum balance "
-      "asks for. Under slow loading the status changes little from one "
-      "step to the next, and starting from it saves Newton iterations; "
-      "it is off by default because on a loose packing with Coulomb "
-      "friction under slow loading it lost a sixth of the platen work "
-      "that the explicit scheme and a fresh status give "
-      "(doc/theory.md section 9.4). "
-      "The status is kept in checkpoints. The first step of a run, a step "
-      "after one that ended with nothing held, the retries of a rejected "
-      "step and the step after an explicit fallback decide afresh.",
+      "asks for, which at a long step catches and releases many slots that "
+      "the solve then has to undo. Under slow loading the status changes "
+      "little from one step to the next, and starting from it saves Newton "
+      "iterations and rejected steps (doc/theory.md section 9.4). "
+      "The retries of a rejected step start from it too, unless the "
+      "residual with it was not finite at the first iterate or the step "
+      "failed twice. The status is kept in checkpoints. The first step of "
+      "a run, a step after one that ended with nothing held and the step "
+      "after an explicit fallback decide afresh.",
       Patterns::Bool());
     prm.add_parameter(
       "Contact status tolerance",

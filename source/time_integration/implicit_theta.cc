@@ -174,6 +174,8 @@ namespace grainmpm
       {
         statistics.solver.converged = false;
         statistics.solver.failure   = newton.failure;
+        statistics.solver.failed_at_first_iterate =
+          newton.failed_at_first_iterate;
         statistics.solver.residual_evaluations =
           residual.n_residual_evaluations() - evaluations_at_start;
         return statistics;
@@ -207,8 +209,9 @@ namespace grainmpm
                                                  dt);
         !failure.empty())
       {
-        statistics.solver.converged = false;
-        statistics.solver.failure   = failure;
+        statistics.solver.converged             = false;
+        statistics.solver.rejected_for_accuracy = true;
+        statistics.solver.failure               = failure;
         statistics.solver.residual_evaluations =
           residual.n_residual_evaluations() - evaluations_at_start;
         return statistics;

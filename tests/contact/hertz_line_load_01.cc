@@ -19,7 +19,7 @@
 // punch, and the half-width follows the facet, not Hertz.
 //
 // With the gap check the half-width is within one cell of Hertz and
-// converges under refinement (a / R = 0.176, 0.220, 0.229 at R / h = 8,
+// converges under refinement (a / R = 0.184, 0.220, 0.229 at R / h = 8,
 // 16, 32; R / h = 32 with arguments "32 1 4 2", about 5 minutes). Without
 // it the floor holds every node where the disk has mass in the first cell
 // layer: a flat patch 1.8 and 2.5 cells wider than Hertz at R / h = 8 and

@@ -8,7 +8,7 @@
 //
 // Reference: the explicit leapfrog, update stress last, at CFL 0.25 (13150
 // steps). The implicit run must store the same elastic energy and take the
-// same platen work, each within 5 % (measured: +0.3 % and -0.3 %), and the
+// same platen work, each within 5 % (measured: +1.0 % and -0.5 %), and the
 // work of its constraints (booked as friction work) must not be negative.
 // The platen moves by 4e-4 cells per step, and the first iterates
 // of a step this long are far from its solution, so the contact status
@@ -21,13 +21,14 @@
 // velocity the momentum balance asks for instead of their own (even with
 // ten changes allowed), 1 %.
 //
-// The same implicit run with `Nonlinear solver/Contact status from last
-// step = true`, every step starting from the status the last one converged
-// to, must end within 1 % of the same elastic energy and platen work, with
-// at least a quarter fewer Newton iterations and residual evaluations
-// (measured: 365 against 579 Newton iterations, 5025 against 7445
-// residual evaluations; +1.0 % and -0.5 % of the explicit run's elastic
-// energy and platen work).
+// The implicit run starts the contact status of each step from the one
+// the last step converged to (`Nonlinear solver/Contact status from last
+// step`, the default). The same run deciding the status afresh at every
+// step must end within 1 % of the same elastic energy and platen work, and
+// the default must take at least a quarter fewer Newton iterations and
+// residual evaluations (measured: 365 against 579 Newton iterations, 4582
+// against 6788 residual evaluations; +1.0 % and -0.5 % against +0.3 % and
+// -0.3 % of the explicit run's elastic energy and platen work).
 
 #include <grainmpm/simulator.h>
 
@@ -80,21 +81,23 @@ main(int argc, char **argv)
           << (implicit_run.at("friction_work").back() >= 0. ? "yes" : "no")
           << std::endl;
 
-  const auto from_last_run =
-    run_case("from_last",
+  // The default starts the status of a step from the last step's; the
+  // same run deciding it afresh at every step.
+  const auto fresh_run =
+    run_case("fresh",
              stack_case("  set Scheme = implicit theta\n"
                         "  set Time step = " +
                           std::to_string(170. * stack_explicit_step) +
                           "\nend\nsubsection Nonlinear solver\n"
-                          "  set Contact status from last step = true\n",
+                          "  set Contact status from last step = false\n",
                         speed,
                         end_time));
   const auto close = [&](const std::string &column) {
-    return std::abs(from_last_run.at(column).back() /
-                      implicit_run.at(column).back() -
+    return std::abs(implicit_run.at(column).back() /
+                      fresh_run.at(column).back() -
                     1.) < 0.01;
   };
-  deallog << "status started from the last step's: the same elastic energy "
+  deallog << "status decided afresh at every step: the same elastic energy "
           << "and platen work within 1 %: "
           << (close("elastic_energy") && close("boundary_work") ? "yes" : "no")
           << std::endl;
@@ -105,11 +108,10 @@ main(int argc, char **argv)
     return sum;
   };
   const auto saves = [&](const std::string &column) {
-    return total(from_last_run.at(column)) <
-           0.75 * total(implicit_run.at(column));
+    return total(implicit_run.at(column)) < 0.75 * total(fresh_run.at(column));
   };
-  deallog << "... and a quarter fewer Newton iterations and residual "
-          << "evaluations: "
+  deallog << "... and the status from the last step (the default) saves a "
+          << "quarter of the Newton iterations and residual evaluations: "
           << (saves("newton_iterations") && saves("residual_evaluations") ?
                 "yes" :
                 "no")

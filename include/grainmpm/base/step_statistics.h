@@ -44,6 +44,16 @@ namespace grainmpm
     bool converged = true;
     /** Why an implicit step failed. */
     std::string failure;
+    /**
+     * The step failed although its Newton solve converged: it was
+     * rejected for its accuracy (ImplicitTheta::energy_error()).
+     */
+    bool rejected_for_accuracy = false;
+    /**
+     * The Newton solve failed at its first iterate: the residual with the
+     * first contact status was not finite.
+     */
+    bool failed_at_first_iterate = false;
     /** Newton iterations of the accepted solve. */
     unsigned int newton_iterations = 0;
     /** Krylov iterations summed over the Newton iterations. */

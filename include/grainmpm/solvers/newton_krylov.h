@@ -102,12 +102,14 @@ namespace grainmpm
    */
   struct NewtonStatistics
   {
-    bool          converged = false;
-    std::string   failure;
-    unsigned int  iterations           = 0;
-    unsigned int  linear_iterations    = 0;
-    unsigned int  status_changes       = 0;
-    unsigned long residual_evaluations = 0;
+    bool        converged = false;
+    std::string failure;
+    /** The residual at the first iterate was not finite. */
+    bool          failed_at_first_iterate = false;
+    unsigned int  iterations              = 0;
+    unsigned int  linear_iterations       = 0;
+    unsigned int  status_changes          = 0;
+    unsigned long residual_evaluations    = 0;
     /** Final root-mean-square of R divided by the velocity scale U. */
     double residual_norm = 0.;
   };

@@ -75,7 +75,7 @@ namespace grainmpm
     /** Hysteresis band of the contact status, in units of U. */
     double status_tolerance = 0.;
     /** The first status of a step starts from the last step's. */
-    bool keep_contact_status = false;
+    bool keep_contact_status = true;
     /** One screen line per Newton iteration and per solve. */
     bool verbose = false;
 
