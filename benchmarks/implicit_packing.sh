@@ -119,7 +119,7 @@ for friction in $frictions; do
     step=$(python3 -c "print($factor * $explicit_step)")
     start=$(date +%s.%N)
     if run "$name" slow_compression_implicit \
-      "$case_text\n$contact\n$end_text\nsubsection Time stepping\n  set Time step = $step\nend\n$solver_text" 2> "$work/$name.err"; then
+      "$case_text\n$contact\n$end_text\nsubsection Time stepping\n  set Time step = $step\n  set Maximum CFL number = 0\nend\n$solver_text" 2> "$work/$name.err"; then
       seconds=$(python3 -c "print(f'{$(date +%s.%N) - $start:.0f}')")
       steps=$(exact "$name" steps)
       mean=$(platen_force "$name" 0)

@@ -37,7 +37,7 @@ for cfl in 1 2.5 5 10; do
   for preconditioner in "probed Jacobi" "none"; do
     name="grain_${cfl}_${preconditioner// /_}"
     run "$name" single_grain_rebound_implicit \
-      "subsection Time stepping\n  set CFL number = $cfl\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\n  set Maximum linear iterations = 1000\nend"
+      "subsection Time stepping\n  set CFL number = $cfl\n  set Maximum CFL number = 0\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\n  set Maximum linear iterations = 1000\nend"
     echo "| single grain | $cfl | $preconditioner | $(exact "$name" steps) | $(solver_columns "$name") | $(speeds "$name") |"
   done
 done

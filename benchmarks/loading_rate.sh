@@ -16,12 +16,14 @@
 # friction it runs:
 # - the explicit leapfrog (USL) at CFL 0.25: the reference at that rate;
 # - the same with Time stepping/Mass scaling = each of MASS_SCALINGS;
-# - the implicit case (AMG) at FACTORS times the explicit step, with
-#   Nonlinear solver/Tolerance = TOLERANCE and Time stepping/Theta = THETA
-#   if given (else the case's: 1/2);
+# - the implicit case (AMG) at FACTORS times the explicit step, fixed
+#   (Time stepping/Maximum CFL number = 0), with Nonlinear
+#   solver/Tolerance = TOLERANCE and Time stepping/Theta = THETA if given
+#   (else the case's: 1/2);
 # - the implicit case from its own step with the steps grown by the
 #   controller up to Time stepping/Maximum time step = each of MAXIMA
-#   times the explicit step (the same TOLERANCE and THETA, and
+#   times the explicit step, or, for the entry "default", up to the
+#   default Maximum CFL number (the same TOLERANCE and THETA, and
 #   Time stepping/Energy error per step = ENERGY_ERROR if given).
 # Per run it prints: wall time, steps, rejected steps, steps advanced by
 # the explicit fallback, Newton iterations per step, GMRES iterations per
@@ -39,7 +41,7 @@
 # Environment: PACKINGS (default "loose"; "loose dense" for both),
 # DENSE_CHECKPOINT, DENSE_TRAVEL, RATES (default "1e-3 1e-4"), FRICTIONS (default "0 0.3"),
 # MASS_SCALINGS (default "10 100"), FACTORS (default "30 300"), MAXIMA
-# (default none), ENERGY_ERROR (default that of the code), GAP_CHECK
+# (default none; numbers and "default"), ENERGY_ERROR (default that of the code), GAP_CHECK
 # (true or false; default that of the case), TOLERANCE (the implicit runs'
 # Newton tolerance; default that of the case), THETA (the implicit runs'
 # Theta; default that of the case), STEP_ERROR (the grown runs' Time
@@ -262,7 +264,7 @@ print(v, $start + travel / v)")"
         name="implicit_${packing}_${rate}_${friction}_$factor"
         step=$(python3 -c "print($factor * $explicit_step)")
         if seconds=$(timed "$name" "$implicit_case" \
-          "$common\n$implicit_text\nsubsection Time stepping\n  set Time step = $step\nend\n$tolerance_text"); then
+          "$common\n$implicit_text\nsubsection Time stepping\n  set Time step = $step\n  set Maximum CFL number = 0\nend\n$tolerance_text"); then
           echo "| $prefix $(row "$name" "implicit ${factor}x" "$seconds" "$reference" "$start")"
         else
           echo "| $prefix | implicit ${factor}x | $seconds |"
@@ -270,16 +272,22 @@ print(v, $start + travel / v)")"
       done
       for maximum in $maxima; do
         name="grown_${packing}_${rate}_${friction}_$maximum"
-        step=$(python3 -c "print($maximum * $explicit_step)")
-        growth="subsection Time stepping\n  set Maximum time step = $step\n"
+        if [ "$maximum" = default ]; then
+          growth="subsection Time stepping\n"
+          label="implicit, grown by default"
+        else
+          step=$(python3 -c "print($maximum * $explicit_step)")
+          growth="subsection Time stepping\n  set Maximum time step = $step\n"
+          label="implicit, grown to ${maximum}x"
+        fi
         if [ -n "${ENERGY_ERROR:-}" ]; then
           growth="$growth  set Energy error per step = $ENERGY_ERROR\n"
         fi
         if seconds=$(timed "$name" "$implicit_case" \
           "$common\n$implicit_text\n${growth}end\n$tolerance_text"); then
-          echo "| $prefix $(row "$name" "implicit, grown to ${maximum}x" "$seconds" "$reference" "$start")"
+          echo "| $prefix $(row "$name" "$label" "$seconds" "$reference" "$start")"
         else
-          echo "| $prefix | implicit, grown to ${maximum}x | $seconds |"
+          echo "| $prefix | $label | $seconds |"
         fi
       done
     done

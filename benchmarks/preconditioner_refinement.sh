@@ -25,7 +25,7 @@ for preconditioner in "probed Jacobi" AMG; do
     name="${preconditioner// /_}_$cells"
     start=$(date +%s.%N)
     run "$name" slow_compression_one_disk \
-      "subsection Background grid\n  set Number of cells = $cells, $cells\nend\nsubsection Time stepping\n  set Time step = $step\n  set End time = $end\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\nend"
+      "subsection Background grid\n  set Number of cells = $cells, $cells\nend\nsubsection Time stepping\n  set Time step = $step\n  set Maximum CFL number = 0\n  set End time = $end\nend\nsubsection Linear solver\n  set Preconditioner = $preconditioner\nend"
     seconds=$(python3 -c "print(f'{$(date +%s.%N) - $start:.1f}')")
     gmres=$(figure "$name" linear_iterations_per_newton_iteration)
     growth="-"

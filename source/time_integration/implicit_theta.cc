@@ -61,6 +61,10 @@ namespace grainmpm
                           grid.minimum_cell_size(),
                           largest_wave_speed(grains, materials),
                           0.))
+    , steps_grow(parameters.time_stepping.largest_time_step(
+                   grid.minimum_cell_size(),
+                   largest_wave_speed(grains, materials)) >
+                 nominal_step_at_rest)
     , residual(contact, grid, materials)
     , step_error(grains)
     , solver(parameters.nonlinear_solver,
@@ -232,8 +236,7 @@ namespace grainmpm
 
     // The error estimate only where it sizes the steps (grown steps).
     const bool estimate_error =
-      parameters.time_stepping.maximum_time_step > 0. &&
-      parameters.time_stepping.step_error_tolerance > 0.;
+      steps_grow && parameters.time_stepping.step_error_tolerance > 0.;
     if (estimate_error)
       step_error.record_velocities(particle_handler);
     transfer.grid_to_particles(particle_handler,
@@ -270,12 +273,24 @@ namespace grainmpm
     const double                     dt) const
   {
     const TimeSteppingParameters &stepping = parameters.time_stepping;
-    if (!(stepping.maximum_time_step > 0. && stepping.energy_error > 0. &&
-          dt > nominal_step_at_rest))
+    // (A step cut and grown back to the nominal one may exceed it by a
+    // round-off.)
+    if (!(steps_grow && stepping.energy_error > 0. &&
+          dt > (1. + 1e-9) * nominal_step_at_rest))
       return "";
     // The grid step's share of the energy balance, as the ledger books it
-    // after the step (theory section 14), from a trial constitutive update.
-    double energies[6] = {kinetic_old,
+    // after the step (theory section 14), from a trial constitutive update,
+    // less the work of gravity on the deformable slots over the step.
+    const GrainFieldLayout<dim> &layout         = transfer.get_layout();
+    const std::vector<bool>     &field_is_rigid = transfer.get_field_is_rigid();
+    const Tensor<1, dim>        &gravity        = parameters.physics.gravity;
+    double                       gravity_work   = 0.;
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      if (!field_is_rigid[layout.field(s)])
+        for (unsigned int d = 0; d < dim; ++d)
+          gravity_work += dt * state.masses.local_element(s) * gravity[d] *
+                          theta_velocities.local_element(s * dim + d);
+    double energies[7] = {kinetic_old,
                           kinetic_new,
                           residual.old_strain_energy(),
                           0.,
@@ -285,17 +300,18 @@ namespace grainmpm
                                                      state.normals,
                                                      unknowns,
                                                      state.velocities_new,
-                                                     theta_velocities)};
+                                                     theta_velocities),
+                          gravity_work};
     energies[3]        = transfer.trial_strain_energy(particle_handler,
                                                theta_velocities,
                                                dt,
                                                energies[4]);
-    Utilities::MPI::sum(ArrayView<const double>(energies, 6),
-                        transfer.get_layout().get_communicator(),
-                        ArrayView<double>(energies, 6));
+    Utilities::MPI::sum(ArrayView<const double>(energies, 7),
+                        layout.get_communicator(),
+                        ArrayView<double>(energies, 7));
     const double before  = energies[0] + energies[2];
     const double after   = energies[1] + energies[3];
-    const double created = after - before + energies[4];
+    const double created = after - before + energies[4] - energies[6];
     const double energy  = std::max(before, after);
     // A step that stops an approach at once (an impact the step does not
     // resolve) loses the energy of the approach to the normal reactions.

@@ -56,6 +56,7 @@ namespace grainmpm
                    "shorter End time.";
         throw InputError(entry.str(), message.str());
       }
+    maximum_step = parameters.largest_time_step(minimum_cell_size, wave_speed);
   }
 
 
@@ -127,8 +128,8 @@ namespace grainmpm
     // The error estimate of a step of length dt goes as dt^2 where the
     // motion is smooth (Zienkiewicz & Xie): the step that meets the
     // tolerance, within a factor of two of this one.
-    if (parameters.maximum_time_step > 0. &&
-        parameters.step_error_tolerance > 0. && step_error >= 0.)
+    if (maximum_step > 0. && parameters.step_error_tolerance > 0. &&
+        step_error >= 0.)
       accuracy_limit =
         step_error > 0. ?
           step *
@@ -144,7 +145,7 @@ namespace grainmpm
     // needed, it shrank the step without end.)
     const double target  = 0.5 * max_newton_iterations;
     const double n       = std::max(1U, newton_iterations);
-    const bool   growing = step_limit > 0. || parameters.maximum_time_step > 0.;
+    const bool   growing = step_limit > 0. || maximum_step > 0.;
     if (growing && n <= target)
       {
         if (++easy_steps >= parameters.steps_before_growth)
@@ -163,13 +164,22 @@ namespace grainmpm
   TimeStepController::largest_step(const double nominal,
                                    const double max_speed) const
   {
-    if (!(parameters.maximum_time_step > nominal))
+    if (!(maximum_step > nominal))
       return nominal;
-    double largest = parameters.maximum_time_step;
+    double largest = maximum_step;
     if (parameters.maximum_displacement > 0. && max_speed > 0.)
-      largest = std::min(largest,
-                         parameters.maximum_displacement * minimum_cell_size /
-                           max_speed);
+      {
+        // Grains that move so fast that the displacement bound allows less
+        // than twice the nominal step (grains in flight at a few per cent of
+        // the wave speed) keep the nominal step: a step a quarter longer
+        // into their impacts gains nothing and brings the energy bound's
+        // rejections.
+        const double bound =
+          parameters.maximum_displacement * minimum_cell_size / max_speed;
+        if (bound < 2. * nominal)
+          return nominal;
+        largest = std::min(largest, bound);
+      }
     if (accuracy_limit > 0.)
       largest = std::min(largest, accuracy_limit);
     return std::max(largest, nominal);

@@ -82,29 +82,46 @@ namespace grainmpm
       "the step of Time step or CFL number (the nominal step), up to this "
       "value, by the same rule as a cut step grows back (min(2, N_t / N) "
       "after Steps before growth easy steps), as long as no material point "
-      "moves more than Maximum displacement per step in a step; a grown "
-      "step that creates more than Energy error per step, or loses more "
-      "than it to the normal contact reactions, or fails, is halved. For "
-      "slow, quasi-static loading, where the nominal step of "
-      "the wave speed is far smaller than what the loading needs "
-      "(doc/theory.md section 12). Zero means the nominal step is the "
-      "largest. Units: time.",
+      "moves more than Maximum displacement per step in a step and the "
+      "step error stays within Step error tolerance; a grown step that "
+      "creates more than Energy error per step, or loses more than it to "
+      "the normal contact reactions, or fails, is halved. For slow, "
+      "quasi-static loading, where the nominal step of the wave speed is "
+      "far smaller than what the loading needs (doc/theory.md section 12). "
+      "Zero means Maximum CFL number times h / c. Units: time.",
+      Patterns::Double(0.));
+    prm.add_parameter(
+      "Maximum CFL number",
+      maximum_cfl_number,
+      "Implicit scheme with Adaptive time stepping and Maximum time step = "
+      "0: the largest step is this number times h / c (h the smallest cell "
+      "size, c the largest dilatational wave speed of the materials), "
+      "i.e. this number times the stability limit of the explicit "
+      "leapfrog with the material at rest. The bounds of Maximum time step "
+      "size the steps below it: they stay at the nominal step (Time step, "
+      "or CFL number) while grains move fast or vibrate, and grow where the "
+      "loading is slow. The default, 250, allows a thousand explicit steps "
+      "at CFL 0.25 in one implicit step. 0, or a value at most the CFL "
+      "number, means no growth: every step is the nominal one unless a "
+      "failed solve cuts it. Dimensionless.",
       Patterns::Double(0.));
     prm.add_parameter(
       "Maximum displacement per step",
       maximum_displacement,
-      "Implicit scheme, steps grown beyond the nominal step (Maximum time "
-      "step): no step is larger than this fraction of the smallest cell "
-      "size divided by the largest speed of the material points at the "
-      "end of the previous step, so that the steps shrink again, though "
-      "never below the nominal step, while grains move fast (a slip, an "
-      "impact, a grain falling). Zero means no such limit. Dimensionless.",
+      "Implicit scheme, steps grown beyond the nominal step (Maximum CFL "
+      "number, Maximum time step): no step is larger than this fraction of "
+      "the smallest cell size divided by the largest speed of the material "
+      "points at the end of the previous step, so that the steps shrink "
+      "again, though never below the nominal step, while grains move fast "
+      "(a slip, an impact, a grain falling); where this allows less than "
+      "twice the nominal step, the step is the nominal one. Zero means no "
+      "such limit. Dimensionless.",
       Patterns::Double(0.));
     prm.add_parameter(
       "Energy error per step",
       energy_error,
-      "Implicit scheme with Maximum time step: a step longer than the "
-      "nominal one (that of Time step, or of CFL number with the material "
+      "Implicit scheme with steps grown beyond the nominal one (Maximum "
+      "CFL number, Maximum time step): a step longer than the nominal one (that of Time step, or of CFL number with the material "
       "at rest) whose grid step creates more energy than this fraction of "
       "the grid energy (the "
       "change of the kinetic plus elastic energy of the deformable grains "
@@ -121,7 +138,8 @@ namespace grainmpm
     prm.add_parameter(
       "Step error tolerance",
       step_error_tolerance,
-      "Implicit scheme with Maximum time step: the relative error per step "
+      "Implicit scheme with steps grown beyond the nominal one (Maximum "
+      "CFL number, Maximum time step): the relative error per step "
       "that sizes the grown steps. The error of a step is estimated from "
       "how the accelerations of the material points change from one step "
       "to the next (Zienkiewicz & Xie 1991: dt^2 / 12 times the change, "
@@ -288,7 +306,7 @@ namespace grainmpm
         entry << "Time stepping/Maximum time step = " << maximum_time_step;
         message << "is below Time step = " << time_step
                 << ", the step it lets grow. Set it above the time step, or "
-                   "to 0 for no growth.";
+                   "set it to 0 and Maximum CFL number = 0 for no growth.";
         throw InputError(entry.str(), message.str());
       }
     if (time_step == 0. && cfl_number == 0.)
@@ -305,5 +323,18 @@ namespace grainmpm
                          "most 1 (0.25 is typical), or Scheme = implicit "
                          "theta for larger steps.");
       }
+  }
+
+
+
+  double
+  TimeSteppingParameters::largest_time_step(const double minimum_cell_size,
+                                            const double wave_speed) const
+  {
+    if (scheme != TimeSteppingScheme::implicit_theta || !adaptive_time_stepping)
+      return 0.;
+    if (maximum_time_step > 0.)
+      return maximum_time_step;
+    return maximum_cfl_number * minimum_cell_size / wave_speed;
   }
 } // namespace grainmpm

@@ -7,6 +7,7 @@
 // easy steps (N <= N_t) in a row and never beyond the nominal step; a hard
 // step (N > N_t) starts the count again and changes nothing else; with
 // adaptive time stepping off nothing changes and a failure is final.
+// Maximum CFL number = 0: the nominal step is the largest.
 
 #include <grainmpm/time_integration/time_step_controller.h>
 
@@ -27,6 +28,7 @@ main(int argc, char **argv)
   parameters.time_step           = 1.;
   parameters.end_time            = 100.;
   parameters.steps_before_growth = 2;
+  parameters.maximum_cfl_number  = 0.;
   TimeStepController controller(parameters, 20, 1., 1.);
   double             step = controller.first_step(0.);
   deallog << "first step " << step << ", minimum "

@@ -69,17 +69,23 @@ main(int argc, char **argv)
   accept(1, 0.);
   accept(1, 0.); // 4
 
-  // Without a maximum the step is the nominal one, whatever the speed.
+  // Without a maximum time step: Maximum CFL number times h / c (here 1)
+  // bounds the steps (the default, 250, and 3); 0 keeps the nominal step
+  // whatever the speed.
   parameters.maximum_time_step = 0.;
-  TimeStepController nominal(parameters, 20, 1., 1.);
-  step = nominal.first_step(0.);
-  for (unsigned int k = 0; k < 4; ++k)
+  for (const double growth : {250., 3., 0.})
     {
-      nominal.accept(step, 1);
-      step = nominal.next_step(0.);
+      parameters.maximum_cfl_number = growth;
+      TimeStepController nominal(parameters, 20, 1., 1.);
+      step = nominal.first_step(0.);
+      for (unsigned int k = 0; k < 8; ++k)
+        {
+          nominal.accept(step, 1);
+          step = nominal.next_step(0.);
+        }
+      deallog << "no maximum time step, Maximum CFL number " << growth
+              << ": after eight easy steps the step is " << step << std::endl;
     }
-  deallog << "no maximum: after four easy steps the step is " << step
-          << std::endl;
 
   // The entries that are refused.
   const auto check = [](TimeSteppingParameters p, const std::string &label) {

@@ -130,7 +130,8 @@ namespace grainmpm
 
   private:
     /**
-     * With `Time stepping/Maximum time step`: why the converged step, if
+     * With steps that grow (TimeSteppingParameters::largest_time_step()):
+     * why the converged step, if
      * longer than nominal_step_at_rest, is rejected for the energy its
      * grid step creates or its normal contact reactions take out (more
      * than `Energy error per step` of the grid energy), or an empty
@@ -155,7 +156,12 @@ namespace grainmpm
      * Steps longer than this have grown beyond the nominal step (that of
      * the material at rest), and their energy is checked.
      */
-    const double    nominal_step_at_rest;
+    const double nominal_step_at_rest;
+    /**
+     * Whether the steps may grow beyond nominal_step_at_rest: then the
+     * error of each step is estimated and a grown step's energy checked.
+     */
+    const bool      steps_grow;
     GridState<dim>  state;
     MassMatrix<dim> mass_matrix;
 

@@ -141,7 +141,8 @@ namespace grainmpm
      * The largest step after one in which particles moved at most at
      * @p max_speed, given the nominal step @p nominal: @p nominal without
      * growth, else the maximum time step, the displacement bound and the
-     * bound of the error estimate, not below @p nominal.
+     * bound of the error estimate, not below @p nominal; @p nominal if the
+     * displacement bound allows less than twice it.
      */
     double
     largest_step(const double nominal, const double max_speed) const;
@@ -150,6 +151,11 @@ namespace grainmpm
     const unsigned int            max_newton_iterations;
     const double                  minimum_cell_size;
     const double                  wave_speed;
+    /**
+     * The largest step (TimeSteppingParameters::largest_time_step() of the
+     * nominal step at rest); 0 without growth beyond the nominal step.
+     */
+    double maximum_step = 0.;
 
     double minimum_step = 0.;
     /** A cut or grown step (0 if none). */

@@ -72,9 +72,14 @@ namespace grainmpm
     unsigned int steps_before_growth = 2;
     /**
      * Largest step the implicit steps may grow to beyond the step of
-     * `Time step` or `CFL number` (0: no growth beyond it).
+     * `Time step` or `CFL number` (0: maximum_step_growth decides).
      */
     double maximum_time_step = 0.;
+    /**
+     * Without a maximum_time_step: the largest implicit step as a multiple
+     * of h / c, the explicit stability limit at rest (0: no growth).
+     */
+    double maximum_cfl_number = 250.;
     /**
      * Largest displacement of a material point in a step grown beyond the
      * nominal one, as a fraction of the smallest cell size.
@@ -118,6 +123,17 @@ namespace grainmpm
     declare(ParameterHandler &prm);
     void
     check();
+
+    /**
+     * The largest step the implicit steps may grow to, on cells of smallest
+     * size @p minimum_cell_size h and a largest wave speed @p wave_speed c:
+     * Maximum time step if set, else Maximum CFL number times h / c; zero
+     * when the steps do not grow (the explicit scheme, fixed steps, or a
+     * Maximum CFL number of 0).
+     */
+    double
+    largest_time_step(const double minimum_cell_size,
+                      const double wave_speed) const;
   };
 } // namespace grainmpm
 
