@@ -152,8 +152,8 @@ namespace grainmpm
     const double                  minimum_cell_size;
     const double                  wave_speed;
     /**
-     * The largest step (TimeSteppingParameters::largest_time_step() of the
-     * nominal step at rest); 0 without growth beyond the nominal step.
+     * The largest step (TimeSteppingParameters::largest_time_step() on
+     * these cells and wave speed); 0 without growth.
      */
     double maximum_step = 0.;
 

@@ -72,7 +72,7 @@ namespace grainmpm
     unsigned int steps_before_growth = 2;
     /**
      * Largest step the implicit steps may grow to beyond the step of
-     * `Time step` or `CFL number` (0: maximum_step_growth decides).
+     * `Time step` or `CFL number` (0: maximum_cfl_number decides).
      */
     double maximum_time_step = 0.;
     /**
