@@ -165,6 +165,11 @@ namespace grainmpm
     const Particles::ParticleHandler<dim> &particle_handler,
     const TimeIntegrator<dim>             &stepper)
   {
+    // The histories written every step (energy, walls) on rank 0: a failed
+    // write stops every rank here, with the file cut back to its last whole
+    // row, before an output file of this step can stop the run first.
+    energy_history->check_written();
+    reaction_history->check_written();
     if (parameters.output.write_particles)
       output_writer->write_particles(particle_handler, time, index);
     if (parameters.output.write_grid && step > 0)
@@ -184,10 +189,7 @@ namespace grainmpm
       ContactHistory<dim>::coordination_numbers(contact_forces, n_grains),
       time,
       parameters.output.write_grain_history);
-    // The histories are written on rank 0 every step (energy, walls) or
-    // output (grains): a failed write stops every rank here.
-    energy_history->check_written();
-    reaction_history->check_written();
+    // The grain history, written at outputs, likewise.
     grain_history->check_written();
   }
 

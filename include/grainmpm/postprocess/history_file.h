@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace grainmpm
@@ -197,19 +198,42 @@ namespace grainmpm
     }
 
     /**
-     * Stop every rank with a message naming the file if a write has failed.
-     * Collective.
+     * Stop every rank with a message naming the file if a write has failed
+     * (a full disk), after cutting the file back to its last complete row,
+     * so that no row is left half written. Collective.
      */
     void
     check_written() const
     {
-      check_history_file(file, filename, communicator);
+      std::string error;
+      if (file.is_open() && !file)
+        {
+          file.close();
+          std::uintmax_t length = 0;
+          {
+            std::ifstream     in(filename, std::ios::binary);
+            const std::string text((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+            const std::size_t last = text.rfind('\n');
+            if (last != std::string::npos)
+              length = last + 1;
+          }
+          std::error_code code;
+          std::filesystem::resize_file(filename, length, code);
+          error = InputError("Output/Output directory",
+                             "could not write '" + filename +
+                               "' (disk full, or no permission?); it ends "
+                               "with the last row written whole.")
+                    .what();
+        }
+      throw_on_all_ranks(error, communicator);
     }
 
   private:
     const std::string filename;
     const MPI_Comm    communicator;
-    std::ofstream     file;
+    /** Closed by check_written() when a write failed. */
+    mutable std::ofstream file;
   };
 } // namespace grainmpm
 
