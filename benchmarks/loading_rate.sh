@@ -50,7 +50,7 @@
 # solver/Contact status from last step; default that of the code),
 # LIGHT_FIELD_FRACTION (all runs' Contact/Light field fraction; default
 # that of the code), PRECONDITIONER (the implicit runs' Linear
-# solver/Preconditioner; default that of the case, AMG),
+# solver/Preconditioner; default that of the case, automatic),
 # MAXIMUM_DISPLACEMENT (the implicit runs' Time stepping/Maximum
 # displacement per step, 0 for no bound; default that of the code).
 # shellcheck source=common/run_case.sh
@@ -217,7 +217,7 @@ for packing in $packings; do
     # (At rest at the checkpoint: a mass-scaled run keeps the points'
     # kinetic energy rather than their velocities.)
     resume="subsection Checkpoint\n  set Steps between checkpoints = 0\n  set Resume from = $dense_resume\n  set Scale velocities with the mass = true\nend"
-    implicit_text="subsection Time stepping\n  set Scheme = implicit theta\n  set Stress update = USF\nend\nsubsection Linear solver\n  set Preconditioner = ${PRECONDITIONER:-AMG}\nend"
+    implicit_text="subsection Time stepping\n  set Scheme = implicit theta\n  set Stress update = USF\nend\nsubsection Linear solver\n  set Preconditioner = ${PRECONDITIONER:-automatic}\nend"
   else
     explicit_case=slow_compression_explicit
     implicit_case=slow_compression_implicit

@@ -144,6 +144,7 @@ namespace grainmpm
       NonlinearProblem             &problem;
       const VectorType             &diagonal;
       const LinearSolverParameters &linear;
+      const bool                    probed;
       const bool                    assembled;
     };
 
@@ -163,7 +164,7 @@ namespace grainmpm
                          const Preconditioning          &preconditioning,
                          const unsigned int              jacobi_sweeps)
     {
-      if (preconditioning.linear.probed_jacobi)
+      if (preconditioning.probed)
         solver.solve(jacobian,
                      dx,
                      rhs,
@@ -252,7 +253,9 @@ namespace grainmpm
 
 
   NewtonStatistics
-  NewtonKrylovSolver::solve(NonlinearProblem &problem, VectorType &x) const
+  NewtonKrylovSolver::solve(NonlinearProblem &problem,
+                            VectorType       &x,
+                            const double      cfl) const
   {
     NewtonStatistics    statistics;
     const unsigned long evaluations_at_start = problem.n_residual_evaluations();
@@ -266,7 +269,7 @@ namespace grainmpm
       return statistics;
     };
 
-    std::string why = initialize(problem, x, state);
+    std::string why = initialize(problem, x, cfl, state);
     if (!why.empty())
       {
         statistics.failed_at_first_iterate = true;
@@ -314,6 +317,7 @@ namespace grainmpm
   std::string
   NewtonKrylovSolver::initialize(NonlinearProblem &problem,
                                  const VectorType &x,
+                                 const double      cfl,
                                  IterationState   &state) const
   {
     problem.update_linearization(x, false);
@@ -331,7 +335,9 @@ namespace grainmpm
                nonlinear.absolute_tolerance * velocity_scale * state.root_n);
     state.target = state.base_target;
 
-    if (linear.probed_jacobi && state.norm > state.target)
+    state.probed    = linear.probed_jacobi_at(cfl);
+    state.assembled = linear.assembled_at(cfl);
+    if (state.probed && state.norm > state.target)
       problem.jacobian_diagonal(
         x,
         [this](const VectorType &a, const VectorType &b) {
@@ -341,10 +347,6 @@ namespace grainmpm
 
     // The assembled preconditioner depends on the contact status: set up
     // before the first linear solve and again after each change of it.
-    state.assembled =
-      (linear.preconditioner == Preconditioner::amg ||
-       linear.preconditioner == Preconditioner::sparse_cholesky ||
-       linear.preconditioner == Preconditioner::automatic);
     state.preconditioner_stale = state.assembled;
 
     state.previous_norm = state.norm;
@@ -434,10 +436,8 @@ namespace grainmpm
     state.dx  = 0.;
     state.rhs = state.r;
     state.rhs *= -1.;
-    const Preconditioning preconditioning{problem,
-                                          state.diagonal,
-                                          linear,
-                                          state.assembled};
+    const Preconditioning preconditioning{
+      problem, state.diagonal, linear, state.probed, state.assembled};
     try
       {
         if (linear.flexible)

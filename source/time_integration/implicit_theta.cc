@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -65,6 +66,9 @@ namespace grainmpm
                    grid.minimum_cell_size(),
                    largest_wave_speed(grains, materials)) >
                  nominal_step_at_rest)
+    , unit_cfl_step(grid.minimum_cell_size() /
+                    std::max(largest_wave_speed(grains, materials),
+                             std::numeric_limits<double>::min()))
     , residual(contact, grid, materials)
     , step_error(grains)
     , solver(parameters.nonlinear_solver,
@@ -169,7 +173,8 @@ namespace grainmpm
       residual.start_status_from(held_status);
     final_residual.reinit(unknowns, true);
 
-    const NewtonStatistics newton       = solver.solve(residual, unknowns);
+    const NewtonStatistics newton =
+      solver.solve(residual, unknowns, dt / unit_cfl_step);
     statistics.solver.newton_iterations = newton.iterations;
     statistics.solver.linear_iterations = newton.linear_iterations;
     statistics.solver.residual_norm     = newton.residual_norm;

@@ -118,13 +118,16 @@ main(int argc, char **argv)
     deallog << "solver, preconditioner: " << static_cast<int>(linear.solver)
             << ' ' << linear.flexible << ' '
             << static_cast<int>(linear.preconditioner) << ' '
-            << linear.probed_jacobi;
+            << linear.probed_jacobi_at(1.) << linear.assembled_at(1.)
+            << linear.probed_jacobi_at(10.) << linear.assembled_at(10.);
     linear.solver_text         = "FGMRES";
     linear.preconditioner_text = "none";
     linear.check();
     deallog << "; " << static_cast<int>(linear.solver) << ' ' << linear.flexible
             << ' ' << static_cast<int>(linear.preconditioner) << ' '
-            << linear.probed_jacobi << std::endl;
+            << linear.probed_jacobi_at(1.) << linear.assembled_at(1.)
+            << linear.probed_jacobi_at(10.) << linear.assembled_at(10.)
+            << std::endl;
   }
   {
     PhysicsParameters<2> physics;

@@ -149,10 +149,13 @@ namespace grainmpm
     /**
      * Solve R(@p x) = 0 from the initial guess @p x. On failure
      * `converged` is false, `failure` says why, and @p x is the last
-     * iterate.
+     * iterate. @p cfl, the CFL number of the step, chooses the
+     * preconditioner under `Preconditioner = automatic`.
      */
     NewtonStatistics
-    solve(NonlinearProblem &problem, VectorType &x) const;
+    solve(NonlinearProblem &problem,
+          VectorType       &x,
+          const double      cfl = 0.) const;
 
     /** The velocity scale U of the tolerances and differencing steps. */
     double
@@ -214,6 +217,8 @@ namespace grainmpm
       unsigned int limit = 0;
       /** The contact status changed: the forcing term starts again. */
       bool restarted = false;
+      /** The preconditioner is probed Jacobi. */
+      bool probed = false;
       /** The preconditioner is the problem's assembled one. */
       bool assembled = false;
       /** The assembled preconditioner needs a new setup. */
@@ -227,13 +232,15 @@ namespace grainmpm
     };
 
     /**
-     * First linearisation and residual at @p x, the scales of the
-     * stopping test, the probed diagonal and the initial forcing term.
-     * Returns why the solve cannot start, or an empty string.
+     * First linearisation and residual at @p x, the preconditioner for a
+     * step of CFL number @p cfl, the scales of the stopping test, the
+     * probed diagonal and the initial forcing term. Returns why the solve
+     * cannot start, or an empty string.
      */
     std::string
     initialize(NonlinearProblem &problem,
                const VectorType &x,
+               const double      cfl,
                IterationState   &state) const;
 
     /**

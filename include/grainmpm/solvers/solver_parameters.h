@@ -56,7 +56,7 @@ namespace grainmpm
      * Newton also needs RMS(R) below this times the largest speed of the
      * iterate (0: off).
      */
-    double       motion_tolerance = 1e-4;
+    double       motion_tolerance = 1e-5;
     unsigned int max_iterations   = 20;
     std::string  forcing_text     = "Eisenstat-Walker";
     ForcingTerm  forcing          = ForcingTerm::eisenstat_walker;
@@ -103,7 +103,11 @@ namespace grainmpm
     probed_jacobi,
     amg,
     sparse_cholesky,
-    /** sparse Cholesky on one MPI process, AMG on more. */
+    /**
+     * Probed Jacobi for steps up to LinearSolverParameters::automatic_cfl,
+     * the assembled matrix for longer ones: sparse Cholesky on one MPI
+     * process, AMG on more.
+     */
     automatic
   };
 
@@ -119,10 +123,13 @@ namespace grainmpm
     bool           flexible            = false;
     unsigned int   restart_length      = 30;
     unsigned int   max_iterations      = 200;
-    std::string    preconditioner_text = "probed Jacobi";
-    Preconditioner preconditioner      = Preconditioner::probed_jacobi;
-    /** Set by check(): preconditioner is probed Jacobi. */
-    bool         probed_jacobi = true;
+    std::string    preconditioner_text = "automatic";
+    Preconditioner preconditioner      = Preconditioner::automatic;
+    /**
+     * With Preconditioner::automatic, the CFL number c dt / h of a step
+     * above which the assembled matrix preconditions it.
+     */
+    double       automatic_cfl = 5.;
     double       jacobi_weight = 1.;
     unsigned int jacobi_sweeps = 1;
 
@@ -130,6 +137,28 @@ namespace grainmpm
     declare(ParameterHandler &prm);
     void
     check();
+
+    /** Whether a step of CFL number @p cfl is preconditioned by probed Jacobi. */
+    bool
+    probed_jacobi_at(const double cfl) const
+    {
+      return preconditioner == Preconditioner::probed_jacobi ||
+             (preconditioner == Preconditioner::automatic &&
+              cfl <= automatic_cfl);
+    }
+
+    /**
+     * Whether a step of CFL number @p cfl is preconditioned by the
+     * assembled matrix (AMG or sparse Cholesky).
+     */
+    bool
+    assembled_at(const double cfl) const
+    {
+      return preconditioner == Preconditioner::amg ||
+             preconditioner == Preconditioner::sparse_cholesky ||
+             (preconditioner == Preconditioner::automatic &&
+              cfl > automatic_cfl);
+    }
   };
 } // namespace grainmpm
 

@@ -161,7 +161,13 @@ namespace grainmpm
      * Whether the steps may grow beyond nominal_step_at_rest: then the
      * error of each step is estimated and a grown step's energy checked.
      */
-    const bool      steps_grow;
+    const bool steps_grow;
+    /**
+     * The step of CFL number 1, h / c (the smallest cell, the largest
+     * wave speed at rest): the CFL number of a step chooses its
+     * preconditioner under `Preconditioner = automatic`.
+     */
+    const double    unit_cfl_step;
     GridState<dim>  state;
     MassMatrix<dim> mass_matrix;
 
