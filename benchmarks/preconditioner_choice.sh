@@ -23,18 +23,6 @@ source "$(dirname "$0")/common/run_case.sh" "$@"
 
 echo "| case | CFL | preconditioner | implicit steps wall time (s) | steps | rejected | Newton/step | GMRES/Newton | residual evaluations/step | result |"
 echo "|---|---|---|---|---|---|---|---|---|---|"
-# run_timed NAME CASE EXTRA: run() without Test mode, which leaves the
-# timings out of summary.csv.
-run_timed() {
-  local name=$1 case=$2 extra=$3
-  {
-    echo "include $PWD/prm/$case.prm"
-    printf '%b\n' "$extra"
-    printf 'subsection Output\n  set Output directory = %s\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name"
-  } > "$work/$name.prm"
-  (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
-}
-
 # case_rows CASE LABEL EXTRA CFL RESULT QUANTITY: the three runs of
 # prm/CASE.prm with the parameter text EXTRA; the last column is RESULT and
 # the summary quantity QUANTITY.
@@ -43,7 +31,7 @@ case_rows() {
   local case=$1 label=$2 extra=$3 cfl=$4 result=$5 quantity=$6 preconditioner name
   for preconditioner in "probed Jacobi" "sparse Cholesky" "automatic"; do
     name="run_$((++count))"
-    run_timed "$name" "$case" \
+    TEST_MODE=false run "$name" "$case" \
       "${extra}subsection Linear solver\n  set Preconditioner = $preconditioner\nend"
     echo "| $label | $cfl | $preconditioner | $(figure "$name" wall_time_implicit_step) | $(exact "$name" steps) | $(exact "$name" rejected_steps) | $(figure "$name" newton_iterations_per_step) | $(figure "$name" linear_iterations_per_newton_iteration) | $(figure "$name" residual_evaluations_per_step) | $result $(figure "$name" "$quantity") |"
   done

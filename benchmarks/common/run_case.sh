@@ -14,13 +14,15 @@ grainmpm=$(realpath "$build/source/grainmpm")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text.
+# run NAME CASE EXTRA: run prm/CASE.prm with the EXTRA parameter text, in
+# Test mode unless TEST_MODE=false (Test mode leaves the timings out of
+# summary.csv).
 run() {
   local name=$1 case=$2 extra=$3
   {
     echo "include $PWD/prm/$case.prm"
     printf '%b\n' "$extra"
-    printf 'subsection Output\n  set Output directory = %s\n  set Test mode = true\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name"
+    printf 'subsection Output\n  set Output directory = %s\n  set Test mode = %s\n  set Write particles = false\n  set Write grid = false\nend\n' "$work/$name" "${TEST_MODE:-true}"
   } > "$work/$name.prm"
   (cd "$work" && "$grainmpm" "$name.prm" > "$name.out")
 }
