@@ -19,6 +19,7 @@ namespace grainmpm
     , max_newton_iterations(max_newton_iterations)
     , minimum_cell_size(minimum_cell_size)
     , wave_speed(wave_speed)
+    , maximum_step(parameters.largest_time_step(minimum_cell_size, wave_speed))
   {
     const double limit = minimum_cell_size / wave_speed;
     if (parameters.scheme == TimeSteppingScheme::explicit_leapfrog &&
@@ -56,7 +57,6 @@ namespace grainmpm
                    "shorter End time.";
         throw InputError(entry.str(), message.str());
       }
-    maximum_step = parameters.largest_time_step(minimum_cell_size, wave_speed);
   }
 
 

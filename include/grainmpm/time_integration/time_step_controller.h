@@ -155,7 +155,7 @@ namespace grainmpm
      * The largest step (TimeSteppingParameters::largest_time_step() on
      * these cells and wave speed); 0 without growth.
      */
-    double maximum_step = 0.;
+    const double maximum_step;
 
     double minimum_step = 0.;
     /** A cut or grown step (0 if none). */
