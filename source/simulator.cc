@@ -92,9 +92,14 @@ namespace grainmpm
                 time.get_previous_step_size(),
                 schedule.output_written(time.get_current_time(),
                                         time.get_previous_step_size()));
+            // Grown steps are bounded by the motion of the grains, not by
+            // the vibration of their points.
             if (!time.is_at_end())
-              time.set_desired_next_step_size(
-                time_step_controller->next_step(statistics.events.max_speed));
+              time.set_desired_next_step_size(time_step_controller->next_step(
+                statistics.events.max_speed,
+                time_step_controller->needs_grain_speed() ?
+                  postprocessor->largest_grain_speed(particle_handler) :
+                  -1.));
             repartition_and_checkpoint(step_number(), time);
             if (const int signal =
                   time.is_at_end() ? 0 : stop_signals.received(communicator))

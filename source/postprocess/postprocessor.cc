@@ -111,6 +111,22 @@ namespace grainmpm
 
 
   template <int dim>
+  double
+  Postprocessor<dim>::largest_grain_speed(
+    const Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    double speed = 0.;
+    for (const GrainMotion<dim> &motion :
+         grain_history->compute(particle_handler))
+      speed = std::max(speed,
+                       motion.velocity.norm() +
+                         motion.angular_velocity.norm() * motion.max_distance);
+    return speed;
+  }
+
+
+
+  template <int dim>
   EnergySummary<dim>
   Postprocessor<dim>::compute_energies(
     const Particles::ParticleHandler<dim> &particle_handler,

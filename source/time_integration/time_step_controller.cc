@@ -162,12 +162,12 @@ namespace grainmpm
 
   double
   TimeStepController::largest_step(const double nominal,
-                                   const double max_speed) const
+                                   const double grain_speed) const
   {
     if (!(maximum_step > nominal))
       return nominal;
     double largest = maximum_step;
-    if (parameters.maximum_displacement > 0. && max_speed > 0.)
+    if (parameters.maximum_displacement > 0. && grain_speed > 0.)
       {
         // Grains that move so fast that the displacement bound allows less
         // than twice the nominal step (grains in flight at a few per cent of
@@ -175,7 +175,7 @@ namespace grainmpm
         // into their impacts gains nothing and brings the energy bound's
         // rejections.
         const double bound =
-          parameters.maximum_displacement * minimum_cell_size / max_speed;
+          parameters.maximum_displacement * minimum_cell_size / grain_speed;
         if (bound < 2. * nominal)
           return nominal;
         largest = std::min(largest, bound);
@@ -188,12 +188,14 @@ namespace grainmpm
 
 
   double
-  TimeStepController::next_step(const double max_speed)
+  TimeStepController::next_step(const double max_speed,
+                                const double grain_speed)
   {
     const double nominal = cfl_step(max_speed);
     if (step_limit == 0.)
       return nominal;
-    const double largest = largest_step(nominal, max_speed);
+    const double largest =
+      largest_step(nominal, grain_speed < 0. ? max_speed : grain_speed);
     if (step_limit < largest)
       return step_limit;
     // At the largest step a cut step has grown back; a grown one is held

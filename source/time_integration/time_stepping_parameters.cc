@@ -110,12 +110,16 @@ namespace grainmpm
       maximum_displacement,
       "Implicit scheme, steps grown beyond the nominal step (Maximum CFL "
       "number, Maximum time step): no step is larger than this fraction of "
-      "the smallest cell size divided by the largest speed of the material "
-      "points at the end of the previous step, so that the steps shrink "
-      "again, though never below the nominal step, while grains move fast "
-      "(a slip, an impact, a grain falling); where this allows less than "
-      "twice the nominal step, the step is the nominal one. Zero means no "
-      "such limit. Dimensionless.",
+      "the smallest cell size divided by the largest speed of the grains "
+      "at the end of the previous step, so that the steps shrink again, "
+      "though never below the nominal step, while grains move fast (a "
+      "slip, an impact, a grain falling); where this allows less than "
+      "twice the nominal step, the step is the nominal one. The speed of a "
+      "grain is that of its rigid-body motion, as grains.csv gives it: "
+      "the speed of its centre of mass plus its angular speed times the "
+      "largest distance of its points from the centre; the vibration "
+      "within a grain does not count. Zero means no such limit. "
+      "Dimensionless.",
       Patterns::Double(0.));
     prm.add_parameter(
       "Energy error per step",

@@ -87,6 +87,15 @@ namespace grainmpm
     compute_energies(const Particles::ParticleHandler<dim> &particle_handler,
                      const StepStatistics                  &statistics);
 
+    /**
+     * The largest speed of the rigid-body motion of a grain (GrainMotion):
+     * the speed of its centre of mass plus its angular speed times the
+     * largest distance of its points from the centre. Collective.
+     */
+    double
+    largest_grain_speed(
+      const Particles::ParticleHandler<dim> &particle_handler) const;
+
     /** The first row of energy.csv, with the @p initial energies. */
     void
     write_initial_row(const EnergySummary<dim> &initial,

@@ -33,7 +33,7 @@ namespace grainmpm
    * allowed (easy: N <= N_t). With `Maximum time step` above the nominal
    * step (that of `Time step` or `CFL number`) the steps go on growing by
    * the same rule beyond it, up to that maximum and to the step in which
-   * the fastest point moves `Maximum displacement per step` cells (never
+   * the fastest grain moves `Maximum displacement per step` cells (never
    * below the nominal step). Its state is written to checkpoints by
    * serialize(). A case whose End time needs more than
    * maximum_steps_to_end steps is refused when the controller is made.
@@ -102,10 +102,23 @@ namespace grainmpm
      * The step after an accepted one in which particles moved at most at
      * @p max_speed: the CFL (or fixed) step, limited by a cut step as long
      * as that is smaller; with growth beyond it, the grown step, limited
-     * by the largest step and the displacement bound.
+     * by the largest step and the displacement bound on the grains moving
+     * at most at @p grain_speed (their rigid-body motion; negative: take
+     * @p max_speed).
      */
     double
-    next_step(const double max_speed);
+    next_step(const double max_speed, const double grain_speed = -1.);
+
+    /**
+     * Whether next_step() bounds grown steps by the speed of the grains
+     * (growth beyond the nominal step and a Maximum displacement per
+     * step).
+     */
+    bool
+    needs_grain_speed() const
+    {
+      return maximum_step > 0. && parameters.maximum_displacement > 0.;
+    }
 
     /** The smallest step at which a retry was made (0 if none). */
     double
@@ -138,14 +151,14 @@ namespace grainmpm
     cfl_step(const double max_speed) const;
 
     /**
-     * The largest step after one in which particles moved at most at
-     * @p max_speed, given the nominal step @p nominal: @p nominal without
+     * The largest step after one in which the grains moved at most at
+     * @p grain_speed, given the nominal step @p nominal: @p nominal without
      * growth, else the maximum time step, the displacement bound and the
      * bound of the error estimate, not below @p nominal; @p nominal if the
      * displacement bound allows less than twice it.
      */
     double
-    largest_step(const double nominal, const double max_speed) const;
+    largest_step(const double nominal, const double grain_speed) const;
 
     const TimeSteppingParameters &parameters;
     const unsigned int            max_newton_iterations;

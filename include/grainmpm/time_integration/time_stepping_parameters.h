@@ -81,8 +81,9 @@ namespace grainmpm
      */
     double maximum_cfl_number = 250.;
     /**
-     * Largest displacement of a material point in a step grown beyond the
-     * nominal one, as a fraction of the smallest cell size.
+     * Largest displacement of a grain (its rigid-body motion) in a step
+     * grown beyond the nominal one, as a fraction of the smallest cell
+     * size.
      */
     double maximum_displacement = 0.1;
     /**
