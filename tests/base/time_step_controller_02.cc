@@ -6,9 +6,10 @@
 // size 1, 20 Newton iterations allowed (N_t = 10), Steps before growth = 2.
 // Easy steps grow the step by min(2, N_t / N) up to 10; points moving at
 // speed v hold it at 0.1 / v, never below the nominal step, and it grows
-// again from there; a rejected step is halved and grows back; hard steps
-// do not grow it. The entries are refused for the explicit scheme, without
-// adaptive steps and below a fixed Time step.
+// again from there; where the speed of the grains is given, it holds the
+// step instead of the points' speed; a rejected step is halved and grows
+// back; hard steps do not grow it. The entries are refused for the
+// explicit scheme, without adaptive steps and below a fixed Time step.
 
 #include <grainmpm/base/input_error.h>
 #include <grainmpm/time_integration/time_step_controller.h>
@@ -68,6 +69,20 @@ main(int argc, char **argv)
   accept(1, 0.); // x 2 -> 2
   accept(1, 0.);
   accept(1, 0.); // 4
+
+  // Where the speed of the grains' rigid-body motion is given, the
+  // displacement bound takes it instead of the point speed: points at 0.04
+  // in grains moving at 0.02 allow 0.1 / 0.02 = 5 (the point speed would
+  // hold the step at 2.5), and grains at 0.04 hold it at 2.5.
+  const auto accept_grains = [&](const double v, const double grain_speed) {
+    controller.accept(step, 1);
+    step = controller.next_step(v, grain_speed);
+    deallog << "accepted with N = 1, points at " << v << ", grains at "
+            << grain_speed << ": next step " << step << std::endl;
+  };
+  accept_grains(0.04, 0.02); // 4
+  accept_grains(0.04, 0.02); // x 2, held at 5
+  accept_grains(0.04, 0.04); // 2.5
 
   // Without a maximum time step: Maximum CFL number times h / c (here 1)
   // bounds the steps (the default, 250, and 3); 0 keeps the nominal step
