@@ -139,6 +139,14 @@ namespace grainmpm
           stepper->get_step_error_estimator();
         archive &(estimator != nullptr ? *estimator : none);
       }
+    // Whether the last implicit step was quasi-static, which chooses the
+    // centring of the next one (Quasi-static theta).
+    if (version >= 3)
+      {
+        bool  none         = false;
+        bool *quasi_static = stepper->get_quasi_static_flag();
+        archive &(quasi_static != nullptr ? *quasi_static : none);
+      }
   }
 
 

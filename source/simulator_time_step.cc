@@ -61,10 +61,11 @@ namespace grainmpm
               << " at t = " << time.get_current_time()
               << " rejected with dt = " << failed_step << ": "
               << statistics.solver.failure << std::endl;
-        // Below the explicit stable step (or the minimum step) the step is
-        // advanced explicitly if the run allows it.
+        // Below the explicit stable step (or the minimum step) a step that
+        // is not grown beyond the nominal one is advanced explicitly if the
+        // run allows it; a grown one is retried at half its length first.
         const bool below_explicit_step =
-          fallback &&
+          fallback && !time_step_controller->is_grown(failed_step) &&
           0.5 * failed_step < fallback->stable_step(particle_handler);
         if (below_explicit_step || !time_step_controller->reject(failed_step))
           {
@@ -121,6 +122,8 @@ namespace grainmpm
     if (StepErrorEstimator<dim> *estimator =
           stepper->get_step_error_estimator())
       estimator->forget();
+    if (bool *quasi_static = stepper->get_quasi_static_flag())
+      *quasi_static = false;
     time_step_controller->resume_after_fallback(time.get_next_step_size());
     pcout << "  step " << step_offset + time.get_step_number() + 1
           << " at t = " << time.get_current_time() << " advanced by "

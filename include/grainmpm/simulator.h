@@ -251,14 +251,15 @@ namespace boost::serialization
    * The version of the state a checkpoint keeps of a run: 1 adds the
    * contact status the implicit scheme starts its next step from
    * (HeldContactStatus), 2 the length of the last step of the implicit
-   * scheme's error estimate (StepErrorEstimator). Checkpoints before
+   * scheme's error estimate (StepErrorEstimator), 3 whether its last
+   * step was quasi-static (Quasi-static theta). Checkpoints before
    * version 2 hold material points with fewer properties, and
    * CheckpointManager::load() refuses them.
    */
   template <int dim>
   struct version<grainmpm::Simulator<dim>>
   {
-    using type                 = mpl::int_<2>;
+    using type                 = mpl::int_<3>;
     using tag                  = mpl::integral_c_tag;
     static constexpr int value = type::value;
   };

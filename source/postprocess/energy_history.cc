@@ -38,15 +38,16 @@ namespace grainmpm
       for (unsigned int d = 0; d < dim; ++d)
         out << ",momentum_"
             << "xyz"[d] << " [" << impulse << "]";
-      out << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
-             "linear_iterations [1],residual_evaluations [1],"
-             "residual_rms [1],rejected_steps [1],grid_energy_change ["
-          << energy << "],transfer_energy_change [" << energy
-          << "],gravity_potential [" << energy << "],plastic_work [" << energy
-          << "],friction_work [" << energy << "],boundary_work [" << energy
-          << "],transfer_work [" << energy << "],leapfrog_work [" << energy
-          << "],balance_residual [" << energy << "]\n"
-          << std::flush;
+      out
+        << ",contact_nodes [1],removed_particles [1],newton_iterations [1],"
+           "linear_iterations [1],residual_evaluations [1],"
+           "residual_rms [1],rejected_steps [1],theta [1],grid_energy_change ["
+        << energy << "],transfer_energy_change [" << energy
+        << "],gravity_potential [" << energy << "],plastic_work [" << energy
+        << "],friction_work [" << energy << "],boundary_work [" << energy
+        << "],transfer_work [" << energy << "],leapfrog_work [" << energy
+        << "],balance_residual [" << energy << "]\n"
+        << std::flush;
     });
   }
 
@@ -154,12 +155,12 @@ namespace grainmpm
         << statistics.solver.linear_iterations << ','
         << statistics.solver.residual_evaluations << ',' << std::setprecision(4)
         << statistics.solver.residual_norm << ',' << statistics.solver.rejected
-        << ',' << std::setprecision(12) << statistics.ledger.grid_energy_change
-        << ',' << statistics.ledger.transfer_energy_change << ','
-        << summary.gravity << ',' << ledger.plastic_work << ','
-        << ledger.friction_work << ',' << ledger.boundary_work << ','
-        << ledger.transfer << ',' << ledger.leapfrog << ','
-        << ledger.balance(summary, initial) << '\n'
+        << ',' << statistics.solver.theta << ',' << std::setprecision(12)
+        << statistics.ledger.grid_energy_change << ','
+        << statistics.ledger.transfer_energy_change << ',' << summary.gravity
+        << ',' << ledger.plastic_work << ',' << ledger.friction_work << ','
+        << ledger.boundary_work << ',' << ledger.transfer << ','
+        << ledger.leapfrog << ',' << ledger.balance(summary, initial) << '\n'
         << std::flush;
   }
 

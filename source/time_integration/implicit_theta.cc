@@ -141,7 +141,7 @@ namespace grainmpm
                     velocities_old,
                     rigid_velocities,
                     parameters.physics.gravity,
-                    parameters.time_stepping.theta,
+                    step_theta(),
                     dt);
 
     // The first iterate: v^n, rigid slots at their velocity at t + dt.
@@ -179,6 +179,7 @@ namespace grainmpm
     statistics.solver.linear_iterations = newton.linear_iterations;
     statistics.solver.residual_norm     = newton.residual_norm;
     statistics.solver.status_changes    = newton.status_changes;
+    statistics.solver.theta             = step_theta();
     if (!newton.converged)
       {
         statistics.solver.converged = false;
@@ -236,6 +237,13 @@ namespace grainmpm
                         layout.get_communicator(),
                         ArrayView<double>(energies, 4));
     grid_energies = {energies[0] + energies[2], energies[1] + energies[3]};
+    // Quasi-static: the grid kinetic energy is a small part of the elastic
+    // energy at both ends of the step.
+    constexpr double quasi_static_kinetic_fraction = 0.01;
+    last_step_quasi_static =
+      energies[3] > 0. &&
+      energies[0] <= quasi_static_kinetic_fraction * energies[2] &&
+      energies[1] <= quasi_static_kinetic_fraction * energies[3];
     statistics.ledger.grid_energy_change =
       grid_energies.second - grid_energies.first;
 
@@ -264,6 +272,18 @@ namespace grainmpm
     statistics.solver.residual_evaluations =
       residual.n_residual_evaluations() - evaluations_at_start;
     return statistics;
+  }
+
+
+
+  template <int dim>
+  double
+  ImplicitTheta<dim>::step_theta() const
+  {
+    const TimeSteppingParameters &stepping = parameters.time_stepping;
+    if (steps_grow && last_step_quasi_static)
+      return std::max(stepping.theta, stepping.quasi_static_theta);
+    return stepping.theta;
   }
 
 

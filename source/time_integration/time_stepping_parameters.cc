@@ -156,12 +156,33 @@ namespace grainmpm
       "section 12). Zero means no such bound. Dimensionless.",
       Patterns::Double(0., 1.));
     prm.add_parameter(
+      "Quasi-static theta",
+      quasi_static_theta,
+      "Implicit scheme with steps grown beyond the nominal one (Maximum "
+      "CFL number, Maximum time step): the centring of a step that follows "
+      "a quasi-static step, one whose grid kinetic energy is at most 1 % of "
+      "the elastic energy of the deformable grains at both of its ends; "
+      "such a step uses the larger of Theta and this value. At Theta = 1/2 "
+      "the grains of a slowly loaded packing keep vibrating on their "
+      "contacts, which holds the steps near the period of that vibration "
+      "and lets long steps create energy; the damping of theta above 1/2 "
+      "takes that vibration out where the loading is slow, so that the "
+      "steps grow, while impacts, free flight and every step that is not "
+      "quasi-static keep Theta (doc/theory.md section 12). The energy the "
+      "damping takes out is the time integrator's loss, a negative balance "
+      "residual of the energy ledger; the column theta of energy.csv gives "
+      "the centring of each step. 0, or a value at most Theta, means Theta "
+      "in every step. Dimensionless.",
+      Patterns::Double(0., 1.));
+    prm.add_parameter(
       "Explicit fallback",
       explicit_fallback,
       "Implicit scheme with Adaptive time stepping: a step whose Newton "
       "solve still fails when halving it would take it below the stable "
       "step of the explicit leapfrog, h / (c + max |v_p|), or below "
       "Minimum time step, is advanced by explicit leapfrog sub-steps "
+      "(a step grown beyond the nominal step, Maximum CFL number, is "
+      "retried implicitly at half its length first) "
       "(Stress update = USL, lumped mass, a quarter of the stable step "
       "each, the same contact law) over the interval of the failed step, "
       "and the implicit steps resume from there, grown back as after a "

@@ -15,8 +15,10 @@
 //     with Maximum time step = 0.05, whose steps the error estimate keeps
 //     near the nominal one, from the points' accelerations of the last
 //     step (kept with the points) and the length of the last step (kept
-//     in the checkpoint), checkpoints every 8 steps, resumed from step 32
-//     of 47;
+//     in the checkpoint), and whose steps after a quasi-static one use
+//     Quasi-static theta (whether the last step was quasi-static is kept
+//     in the checkpoint; steps 19 to 32 use it), checkpoints every 8
+//     steps, resumed from step 24 of 32;
 // (b) the explicit single grain between walls to t = 0.3, resumed from
 //     step 1400, shortly after the first wall impact;
 // (b') in 3D, the sphere of tests/runs/sphere_rebound_3d.prm hitting the
@@ -154,7 +156,7 @@ main(int argc, char **argv)
            "prm/slow_compression_one_disk",
            "subsection Time stepping\n  set Maximum time step = 0.05\nend\n",
            8,
-           32);
+           24);
   check<2>("grain",
            "prm/single_grain_rebound_explicit",
            "subsection Time stepping\n  set End time = 0.3\nend\n",

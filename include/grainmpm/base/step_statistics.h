@@ -76,6 +76,11 @@ namespace grainmpm
      * (StepErrorEstimator), or negative if there is none.
      */
     double step_error = -1.;
+    /**
+     * The centring of an implicit step: `Time stepping/Theta`, or
+     * `Quasi-static theta` after a quasi-static step; 0 for explicit steps.
+     */
+    double theta = 0.;
   };
 
 

@@ -104,6 +104,13 @@ namespace grainmpm
       return &step_error;
     }
 
+    /** Whether the last step was quasi-static (see step_theta()). */
+    bool *
+    get_quasi_static_flag() override
+    {
+      return &last_step_quasi_static;
+    }
+
     /** The Newton-Krylov solver. */
     const NewtonKrylovSolver &
     get_solver() const
@@ -129,6 +136,15 @@ namespace grainmpm
     }
 
   private:
+    /**
+     * The centring of the next step: `Theta`, or with steps that grow
+     * after a quasi-static step (grid kinetic energy at most 1 % of the
+     * elastic energy at both ends) the larger of it and `Quasi-static
+     * theta`.
+     */
+    double
+    step_theta() const;
+
     /**
      * With steps that grow (TimeSteppingParameters::largest_time_step()):
      * why the converged step, if
@@ -183,6 +199,8 @@ namespace grainmpm
     VectorType                final_residual;
     VectorType                theta_velocities;
     std::pair<double, double> grid_energies;
+    /** Whether the last accepted step was quasi-static. */
+    bool last_step_quasi_static = false;
   };
 } // namespace grainmpm
 

@@ -166,6 +166,17 @@ namespace grainmpm
       return nullptr;
     }
 
+    /**
+     * Whether a scheme's last step was quasi-static (the implicit scheme's,
+     * whose next step then uses `Quasi-static theta`), for checkpoints and
+     * to forget it, or nullptr.
+     */
+    virtual bool *
+    get_quasi_static_flag()
+    {
+      return nullptr;
+    }
+
     /** The constraint impulses of the last step (this rank's nodes). */
     virtual const ConstraintImpulses<dim> &
     get_impulses() const

@@ -129,6 +129,20 @@ namespace grainmpm
                0.;
     }
 
+    /**
+     * Whether @p step is longer than the nominal step of the material at
+     * rest: a step grown beyond it (a step cut and grown back to it may
+     * exceed it by a round-off). A rejected grown step is retried
+     * implicitly with half its length, also where that is below the
+     * explicit stable step (a CFL number below 1); the explicit fallback
+     * takes only steps that are not grown.
+     */
+    bool
+    is_grown(const double step) const
+    {
+      return step > (1. + 1e-9) * cfl_step(0.);
+    }
+
     /** The smallest step the failure policy may try. */
     double
     get_minimum_step() const

@@ -98,6 +98,11 @@ namespace grainmpm
      */
     double step_error_tolerance = 0.05;
     /**
+     * With growth beyond the nominal step: the centring of a step that
+     * follows a quasi-static step, max(theta, this) (0: theta throughout).
+     */
+    double quasi_static_theta = 0.6;
+    /**
      * Advance a step that the implicit solve cannot take at the explicit
      * stable step by explicit leapfrog sub-steps.
      */
