@@ -56,6 +56,16 @@ stack_case(const std::string &time_stepping,
   return prm.str();
 }
 
+/**
+ * The slow approach of the stack: the platen at V / c = 1e-5 (V = 3.7e-4)
+ * to t = 1.4, 0.03 cells of travel, with @p time_stepping.
+ */
+inline std::string
+slow_stack_case(const std::string &time_stepping)
+{
+  return stack_case(time_stepping, "0.00037", "1.4");
+}
+
 /** The explicit stable step of the stack at CFL 0.25, 0.25 h / c. */
 constexpr double stack_explicit_step = 1.0647e-4;
 

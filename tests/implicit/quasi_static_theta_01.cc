@@ -63,24 +63,19 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
 
-  const std::string speed    = "0.00037";
-  const std::string end_time = "1.4";
-  const auto        explicit_run =
-    run_case("explicit",
-             stack_case(stack_explicit_reference(), speed, end_time));
+  const auto explicit_run =
+    run_case("explicit", slow_stack_case(stack_explicit_reference()));
   const double elastic = explicit_run.at("elastic_energy").back();
   const double work    = explicit_run.at("boundary_work").back();
   deallog << "explicit: elastic energy and platen work > 0: "
           << (elastic > 0. && work > 0. ? "yes" : "no") << std::endl;
 
   const auto defaults =
-    run_case("defaults",
-             stack_case("  set Scheme = implicit theta\n", speed, end_time));
-  const auto         half       = run_case("half",
-                             stack_case("  set Scheme = implicit theta\n"
-                                                      "  set Quasi-static theta = 0\n",
-                                        speed,
-                                        end_time));
+    run_case("defaults", slow_stack_case("  set Scheme = implicit theta\n"));
+  const auto half = run_case("half",
+                             slow_stack_case("  set Scheme = implicit theta\n"
+                                             "  set Quasi-static theta = 0\n"));
+
   const unsigned int n_defaults = defaults.at("theta").size() - 1;
   const unsigned int n_half     = half.at("theta").size() - 1;
 
