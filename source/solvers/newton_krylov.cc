@@ -18,6 +18,14 @@ namespace grainmpm
   {
     using VectorType = NonlinearProblem::VectorType;
 
+
+    /** @p what, then ": " and @p reason if there is one. */
+    std::string
+    with_reason(const std::string &what, const std::string &reason)
+    {
+      return reason.empty() ? what : what + ": " + reason;
+    }
+
     /**
      * J z by finite differences at a fixed point x with R(x) = r: the
      * matrix of the Krylov solvers.
@@ -324,7 +332,8 @@ namespace grainmpm
     problem.residual(x, state.r);
     state.norm = state.r.l2_norm();
     if (!std::isfinite(state.norm))
-      return "the residual of the initial guess is not finite";
+      return with_reason("the residual of the initial guess is not finite",
+                         problem.why_not_finite());
 
     state.root_n = std::sqrt(static_cast<double>(x.size()));
     state.scale  = (nonlinear.residual_scale == ResidualScale::physical) ?
@@ -545,7 +554,9 @@ namespace grainmpm
         problem.residual(x, state.r);
         state.norm = state.r.l2_norm();
         if (!std::isfinite(state.norm))
-          return "the residual is not finite";
+          return with_reason(
+            "the residual is not finite after a change of the contact status",
+            problem.why_not_finite());
       }
     return "";
   }

@@ -205,6 +205,18 @@ namespace grainmpm
 
 
   template <int dim>
+  std::string
+  ThetaResidual<dim>::why_not_finite() const
+  {
+    if (Utilities::MPI::max(last_evaluation_inverted ? 1U : 0U,
+                            communicator()) == 0)
+      return "";
+    return "a material point inverts (det(I + dt grad v^theta) <= 0)";
+  }
+
+
+
+  template <int dim>
   void
   ThetaResidual<dim>::setup_preconditioner(const VectorType &)
   {
@@ -326,7 +338,8 @@ namespace grainmpm
       !status.wall_slots.empty();
     theta_velocities(work_projected, work_theta);
     work_theta.update_ghost_values();
-    const bool inverted = assemble_internal_forces();
+    const bool inverted      = assemble_internal_forces();
+    last_evaluation_inverted = inverted;
     work_theta.zero_out_ghost_values();
     // M (V - v^n), before the return on inverted particles: it is
     // collective.

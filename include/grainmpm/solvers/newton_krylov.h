@@ -93,6 +93,17 @@ namespace grainmpm
     /** Residual evaluations so far (all kinds). */
     virtual unsigned long
     n_residual_evaluations() const = 0;
+
+    /**
+     * Why the last residual evaluation was not finite, for the message of
+     * a rejected step (e.g. "a material point inverts"), or empty if the
+     * problem cannot tell. Collective.
+     */
+    virtual std::string
+    why_not_finite() const
+    {
+      return "";
+    }
   };
 
 

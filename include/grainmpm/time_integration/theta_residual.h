@@ -230,6 +230,14 @@ namespace grainmpm
     }
 
     /**
+     * "a material point inverts (...)" if the last evaluation of any rank
+     * met a particle with det(I + dt grad v^theta) <= 0, which makes the
+     * residual NaN; empty otherwise. Collective.
+     */
+    std::string
+    why_not_finite() const override;
+
+    /**
      * R(@p velocities) into @p residual (which must have the layout of
      * the unknowns). With @p simplified, v_ref at contact nodes is the
      * frozen one and the momentum shift is skipped (the preconditioner's
@@ -395,6 +403,8 @@ namespace grainmpm
     mutable VectorType    work_increment;
     mutable VectorType    work_inertia;
     mutable unsigned long evaluation_count = 0;
+    /** Whether the last evaluation inverted a particle on this rank. */
+    mutable bool last_evaluation_inverted = false;
 
     /**
      * The raw residual of the last full evaluation, the velocities it was
