@@ -18,14 +18,6 @@ namespace grainmpm
   {
     using VectorType = NonlinearProblem::VectorType;
 
-
-    /** @p what, then ": " and @p reason if there is one. */
-    std::string
-    with_reason(const std::string &what, const std::string &reason)
-    {
-      return reason.empty() ? what : what + ": " + reason;
-    }
-
     /**
      * J z by finite differences at a fixed point x with R(x) = r: the
      * matrix of the Krylov solvers.
@@ -332,8 +324,8 @@ namespace grainmpm
     problem.residual(x, state.r);
     state.norm = state.r.l2_norm();
     if (!std::isfinite(state.norm))
-      return with_reason("the residual of the initial guess is not finite",
-                         problem.why_not_finite());
+      return problem.not_finite(
+        "the residual of the initial guess is not finite");
 
     state.root_n = std::sqrt(static_cast<double>(x.size()));
     state.scale  = (nonlinear.residual_scale == ResidualScale::physical) ?
@@ -554,9 +546,8 @@ namespace grainmpm
         problem.residual(x, state.r);
         state.norm = state.r.l2_norm();
         if (!std::isfinite(state.norm))
-          return with_reason(
-            "the residual is not finite after a change of the contact status",
-            problem.why_not_finite());
+          return problem.not_finite(
+            "the residual is not finite after a change of the contact status");
       }
     return "";
   }

@@ -104,6 +104,14 @@ namespace grainmpm
     {
       return "";
     }
+
+    /** @p what, then ": " and why_not_finite() if it says why. Collective. */
+    std::string
+    not_finite(const std::string &what) const
+    {
+      const std::string reason = why_not_finite();
+      return reason.empty() ? what : what + ": " + reason;
+    }
   };
 
 
