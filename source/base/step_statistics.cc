@@ -13,7 +13,7 @@ namespace grainmpm
   {
     if (Utilities::MPI::n_mpi_processes(communicator) == 1)
       return;
-    constexpr unsigned int n_sums = 16;
+    constexpr unsigned int n_sums = 17;
     double values[n_sums] = {static_cast<double>(events.n_contact_nodes),
                              static_cast<double>(events.n_removed),
                              static_cast<double>(events.n_held_at_walls),
@@ -29,7 +29,8 @@ namespace grainmpm
                              sums.momentum[2],
                              sums.first_moment[0],
                              sums.first_moment[1],
-                             sums.first_moment[2]};
+                             sums.first_moment[2],
+                             ledger.hypoelastic_correction};
     Utilities::MPI::sum(ArrayView<const double>(values, n_sums),
                         communicator,
                         ArrayView<double>(values, n_sums));
@@ -43,6 +44,7 @@ namespace grainmpm
     ledger.leapfrog_energy_change = values[7];
     sums.kinetic_energy           = values[8];
     sums.elastic_energy           = values[9];
+    ledger.hypoelastic_correction = values[16];
     for (unsigned int d = 0; d < 3; ++d)
       {
         sums.momentum[d]     = values[10 + d];

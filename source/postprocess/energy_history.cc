@@ -46,7 +46,8 @@ namespace grainmpm
         << "],gravity_potential [" << energy << "],plastic_work [" << energy
         << "],friction_work [" << energy << "],boundary_work [" << energy
         << "],transfer_work [" << energy << "],leapfrog_work [" << energy
-        << "],balance_residual [" << energy << "]\n"
+        << "],hypoelastic_correction [" << energy << "],balance_residual ["
+        << energy << "]\n"
         << std::flush;
     });
   }
@@ -160,7 +161,8 @@ namespace grainmpm
         << statistics.ledger.transfer_energy_change << ',' << summary.gravity
         << ',' << ledger.plastic_work << ',' << ledger.friction_work << ','
         << ledger.boundary_work << ',' << ledger.transfer << ','
-        << ledger.leapfrog << ',' << ledger.balance(summary, initial) << '\n'
+        << ledger.leapfrog << ',' << ledger.hypoelastic_correction << ','
+        << ledger.balance(summary, initial) << '\n'
         << std::flush;
   }
 

@@ -196,7 +196,9 @@ namespace grainmpm
     out << ", transfers = " << ledger.transfer / reference;
     if (!implicit)
       out << ", leapfrog = " << ledger.leapfrog / reference;
-    out << ", balance residual = " << relative_balance() << " (largest "
+    out << ", hypoelastic correction = "
+        << ledger.hypoelastic_correction / reference
+        << ", balance residual = " << relative_balance() << " (largest "
         << largest_balance / reference << ")\n"
         << "  largest plastic strain:   " << largest_plastic_strain << "\n";
     if (implicit)
@@ -280,6 +282,9 @@ namespace grainmpm
       {"boundary_work", ledger.boundary_work / reference, relative},
       {"transfer_work", ledger.transfer / reference, relative},
       {"leapfrog_work", ledger.leapfrog / reference, relative},
+      {"hypoelastic_correction",
+       ledger.hypoelastic_correction / reference,
+       relative},
       {"balance_residual", relative_balance(), relative},
       {"largest_balance_residual", largest_balance / reference, relative},
       {"grid_energy_change", grid_energy_change / reference, relative},

@@ -47,6 +47,7 @@ namespace grainmpm
       total.ledger.friction_work += step.ledger.friction_work;
       total.ledger.boundary_work += step.ledger.boundary_work;
       total.ledger.leapfrog_energy_change += step.ledger.leapfrog_energy_change;
+      total.ledger.hypoelastic_correction += step.ledger.hypoelastic_correction;
 
       // The particle sums, where gathered, are those after the last one.
       total.sums = step.sums;

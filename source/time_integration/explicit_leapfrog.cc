@@ -71,13 +71,12 @@ namespace grainmpm
         // forces of eq. (7) from sigma^{n+1/2}, V^{n+1/2}.
         statistics.events.n_contact_nodes +=
           apply_constraints(velocities_old, true);
-        transfer.update_particle_states_and_forces(
-          particle_handler,
-          velocities_old,
-          dt,
-          parameters.physics.gravity,
-          forces,
-          statistics.ledger.plastic_work);
+        transfer.update_particle_states_and_forces(particle_handler,
+                                                   velocities_old,
+                                                   dt,
+                                                   parameters.physics.gravity,
+                                                   forces,
+                                                   statistics.ledger);
       }
     else
       transfer.compute_forces(particle_handler,
@@ -114,7 +113,7 @@ namespace grainmpm
       transfer.update_particle_states(particle_handler,
                                       state.velocities_new,
                                       dt,
-                                      statistics.ledger.plastic_work);
+                                      statistics.ledger);
     else if (parameters.time_stepping.stress_update == StressUpdate::musl)
       {
         // The strain velocity remapped from the new particle momenta.
@@ -132,7 +131,7 @@ namespace grainmpm
         transfer.update_particle_states(particle_handler,
                                         velocities_old,
                                         dt,
-                                        statistics.ledger.plastic_work);
+                                        statistics.ledger);
       }
 
     transfer.finish_step(particle_handler, statistics);

@@ -228,11 +228,8 @@ namespace grainmpm
       }
     double energies[4] = {kinetic_old, kinetic_new, 0., 0.};
     energies[2]        = residual.old_strain_energy();
-    transfer.update_particle_states(particle_handler,
-                                    theta_velocities,
-                                    dt,
-                                    statistics.ledger.plastic_work,
-                                    &energies[3]);
+    transfer.update_particle_states(
+      particle_handler, theta_velocities, dt, statistics.ledger, &energies[3]);
     Utilities::MPI::sum(ArrayView<const double>(energies, 4),
                         layout.get_communicator(),
                         ArrayView<double>(energies, 4));

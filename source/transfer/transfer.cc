@@ -286,13 +286,13 @@ namespace grainmpm
     Particles::ParticleHandler<dim> &particle_handler,
     const VectorType                &velocities,
     const double                     dt,
-    double                          &plastic_work,
+    LedgerIncrements                &ledger,
     double                          *strain_energy) const
   {
     update_states(particle_handler,
                   velocities,
                   dt,
-                  plastic_work,
+                  ledger,
                   strain_energy,
                   Tensor<1, dim>(),
                   nullptr);
@@ -308,15 +308,17 @@ namespace grainmpm
     const double                     dt,
     double                          &plastic_work) const
   {
-    double strain_energy = 0.;
+    double           strain_energy = 0.;
+    LedgerIncrements ledger;
     update_states(particle_handler,
                   velocities,
                   dt,
-                  plastic_work,
+                  ledger,
                   &strain_energy,
                   Tensor<1, dim>(),
                   nullptr,
                   false);
+    plastic_work += ledger.plastic_work;
     return strain_energy;
   }
 
@@ -330,16 +332,11 @@ namespace grainmpm
     const double                     dt,
     const Tensor<1, dim>            &gravity,
     VectorType                      &forces,
-    double                          &plastic_work) const
+    LedgerIncrements                &ledger) const
   {
     layout.reinit_vector(forces, dim);
-    update_states(particle_handler,
-                  velocities,
-                  dt,
-                  plastic_work,
-                  nullptr,
-                  gravity,
-                  &forces);
+    update_states(
+      particle_handler, velocities, dt, ledger, nullptr, gravity, &forces);
     forces.compress(VectorOperation::add);
   }
 
@@ -351,7 +348,7 @@ namespace grainmpm
     Particles::ParticleHandler<dim> &particle_handler,
     const VectorType                &velocities,
     const double                     dt,
-    double                          &plastic_work,
+    LedgerIncrements                &ledger,
     double                          *strain_energy,
     const Tensor<1, dim>            &gravity,
     VectorType                      *forces,
@@ -376,21 +373,29 @@ namespace grainmpm
           *materials[grains[grain].material];
         const double old_plastic_strain = properties[Layout::plastic_strain];
         double       plastic_strain     = old_plastic_strain;
+        const SymmetricTensor<2, 3> old_stress = Layout::get_stress(properties);
+        const double                old_volume = properties[Layout::volume];
         const SymmetricTensor<2, 3> stress =
-          model.update_stress(Layout::get_stress(properties),
-                              increment,
-                              plastic_strain);
-        const double volume = store ? store_particle_state(properties,
+          model.update_stress(old_stress, increment, plastic_strain);
+        const double volume         = store ? store_particle_state(properties,
                                                            stress,
                                                            plastic_strain,
                                                            increment) :
-                                      trial_volume<dim>(properties, increment);
+                                              trial_volume<dim>(properties, increment);
+        const double energy_density = model.strain_energy_density(stress);
         if (strain_energy != nullptr)
-          *strain_energy += volume * model.strain_energy_density(stress);
-        plastic_work +=
+          *strain_energy += volume * energy_density;
+        ledger.plastic_work +=
           volume *
           model.plastic_work_density(stress,
                                      plastic_strain - old_plastic_strain);
+        // V W changes by the mean volume times the change of W, the elastic
+        // work of the stresses, plus the mean W times the change of V,
+        // which is not work.
+        if (store)
+          ledger.hypoelastic_correction +=
+            0.5 * (model.strain_energy_density(old_stress) + energy_density) *
+            (volume - old_volume);
         if (force_array != nullptr)
           add_force(
             p, properties[Layout::mass], volume, stress, gravity, force_array);

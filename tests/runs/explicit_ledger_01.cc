@@ -3,24 +3,33 @@
 
 // The energy ledger of the explicit leapfrog with Stress update = USL
 // closes: E - E0 + plastic + friction - boundary - transfer - leapfrog
-// (the balance residual) stays small against the energy in play, in the
-// two disks' impact (prm/two_disks_explicit.prm), the single grain's wall
-// impact (prm/single_grain_rebound_explicit.prm) and the slow compression
-// of a packing (prm/slow_compression_explicit.prm, to t = 0.2). The
-// leapfrog term (the kinetic energy of the grid-scale part of each step's
-// velocity change, doc/theory.md section 14) equals the transfer loss with
-// the FLIP update: the explicit step loses that energy twice. Without it
-// the balance was -2.7 % of E0 (two disks), -22 % (single grain) and
-// +6.8 % of the platen work at t = 0.2 (packing, with the impact-loss
-// booking used before). Measured now, with the gap check of the contact
-// law (the default): 0.04 % after the two disks' impact; -1.09 % after the
-// single grain's five wall impacts, about -0.2 % each (without the gap
-// check -0.45 %: a wall catches the grain when its surface arrives, with
-// the full mass of the nodes there, and the kinetic energy of that jump,
-// 1/2 m a^2, is not in the leapfrog term); under 0.33 % of the platen
-// work at every step of the packing.
+// - hypoelastic correction (the balance residual) stays small against the
+// energy in play, in the two disks' impact (prm/two_disks_explicit.prm),
+// the single grain's wall impacts (prm/single_grain_rebound_explicit.prm)
+// and the slow compression of a packing (prm/slow_compression_explicit.prm,
+// to t = 0.2). The leapfrog term (the kinetic energy of the grid-scale
+// part of each step's velocity change, doc/theory.md section 14) equals the
+// transfer loss with the FLIP update: the explicit step loses that energy
+// twice. Without it the balance was -2.7 % of E0 (two disks), -22 %
+// (single grain) and +6.8 % of the platen work at t = 0.2 (packing, with
+// the impact-loss booking used before). The hypoelastic correction (the
+// elastic energy V W(sigma) less the work of the stresses, a property of
+// the model) swings in the impact, -2.4 % of E0 at the deepest compression
+// of the two disks and +1.7 % after; without it the balance swung with it
+// (largest 3.9 % of E0 for the two disks, 2.9 % for the single grain).
+// Measured now, with the gap check of the contact law (the default): the
+// largest |balance| 1.8 % of E0 for the two disks (-1.6 % at the end,
+// lost at the first contact, where the nodes of the two fields are caught
+// at a common normal velocity); 1.6 % for the single grain (-1.10 % after
+// its five wall impacts, about -0.2 % each; without the gap check -0.45 %:
+// a wall catches the grain when its surface arrives, with the full mass of
+// the nodes there, and the kinetic energy of that jump, 1/2 m a^2, is not
+// in the leapfrog term); under 0.33 % of the platen work at every step of
+// the packing.
 // On 1 and 2 MPI ranks (the sums are reduced over the ranks; two ranks run
 // the two disks only).
+
+#include <algorithm>
 
 #include "../tests.h"
 
@@ -60,12 +69,13 @@ namespace
                     "  set End time = " + std::to_string(end_time) + "\n" :
                     std::string()) +
                  "end\n");
-    const auto  &E        = c.at("total_energy");
-    const auto  &balance  = c.at("balance_residual");
-    const auto  &transfer = c.at("transfer_work");
-    const auto  &leapfrog = c.at("leapfrog_work");
-    const auto  &W        = c.at("boundary_work");
-    const double scale    = scale_name == "E0" ? E.front() : W.back();
+    const auto  &E          = c.at("total_energy");
+    const auto  &balance    = c.at("balance_residual");
+    const auto  &transfer   = c.at("transfer_work");
+    const auto  &leapfrog   = c.at("leapfrog_work");
+    const auto  &W          = c.at("boundary_work");
+    const auto  &correction = c.at("hypoelastic_correction");
+    const double scale      = scale_name == "E0" ? E.front() : W.back();
     double       worst = 0., leapfrog_is_transfer = 0.;
     for (unsigned int k = 0; k < E.size(); ++k)
       {
@@ -80,6 +90,15 @@ namespace
             << yes(leapfrog_is_transfer <= 1e-9 * scale) << std::endl;
     std::ostringstream percent;
     percent << tolerance * 100;
+    // The hypoelastic correction swings with the elastic energy in an
+    // impact: negative while the grains are compressed, positive after.
+    if (name == "two_disks")
+      deallog << "  hypoelastic correction below -1 % of E0 in the impact "
+                 "and above +1 % after: "
+              << yes(*std::min_element(correction.begin(), correction.end()) <
+                       -0.01 * scale &&
+                     correction.back() > 0.01 * scale)
+              << std::endl;
     deallog << "  |balance| <= " << percent.str() << " % of " << scale_name
             << (every_step ? " at every step: " : " at the end: ")
             << yes(worst <= tolerance * scale) << std::endl;
@@ -97,7 +116,7 @@ main(int argc, char **argv)
   // leapfrog's exchange between kinetic and strain energy runs half a step
   // out of phase: -6.5 % of E0 in the two disks' impact, -1.4 % in the
   // single grain's first) and comes back when they separate.
-  check("two_disks", "two_disks_explicit.prm", 0., "E0", 0.005, false);
+  check("two_disks", "two_disks_explicit.prm", 0., "E0", 0.025, true);
   // The single grain (15,800 steps) and the packing (1900) on one rank
   // only: on two, oversubscribed beside other tests, their messages make
   // them slow.
@@ -107,8 +126,8 @@ main(int argc, char **argv)
             "single_grain_rebound_explicit.prm",
             0.,
             "E0",
-            0.015,
-            false);
+            0.02,
+            true);
       check("packing", "slow_compression_explicit.prm", 0.2, "W", 0.005, true);
     }
 }

@@ -115,6 +115,17 @@ namespace grainmpm
      */
     double plastic_work = 0.;
     /**
+     * Both schemes: the volume term of the elastic energy,
+     * sum_p 1/2 (W(sigma_p^n) + W(sigma_p^{n+1})) (V_p^{n+1} - V_p^n),
+     * W = 1/2 sigma : C^{-1} : sigma, over the deformable particles. V W
+     * changes by the mean volume times the change of W, which is the
+     * elastic work of the stresses, plus this term, which is not work: a
+     * hypoelastic material stores the work of its stresses, and V W
+     * measures it only to first order in the strain. Booked so that the
+     * balance residual holds the numerical gains and losses alone.
+     */
+    double hypoelastic_correction = 0.;
+    /**
      * Both schemes: the work the contact, wall and rigid-grain constraints
      * of the step do on the deformable grains, split into what rigid grains
      * and walls put in (boundary_work: the reaction on the slots of a node

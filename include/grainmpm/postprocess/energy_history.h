@@ -12,6 +12,8 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <boost/serialization/version.hpp>
+
 #include <cstdint>
 #include <fstream>
 #include <memory>
@@ -60,9 +62,8 @@ namespace grainmpm
    * (StepStatistics of the accepted steps). The balance residual is what
    * none of these accounts for: the time integrator's own gain or loss
    * (explicit: the oscillating rest of the leapfrog's exchange, all of it
-   * with USF and MUSL; implicit: the contact pass on v^n, the theta step,
-   * the hypoelastic energy measure), and particles removed through open
-   * faces.
+   * with USF and MUSL; implicit: the contact pass on v^n, the theta
+   * step), and particles removed through open faces.
    */
   struct EnergyLedger
   {
@@ -83,12 +84,20 @@ namespace grainmpm
      * lumped-mass loss).
      */
     double transfer = 0.;
+    /**
+     * The elastic energy sum V W(sigma) less the elastic work of the
+     * stresses (LedgerIncrements::hypoelastic_correction): what the
+     * elastic energy column shows beyond the energy the grains store.
+     */
+    double hypoelastic_correction = 0.;
 
     template <class Archive>
     void
-    serialize(Archive &archive, const unsigned int)
+    serialize(Archive &archive, const unsigned int version)
     {
       archive &plastic_work &friction_work &boundary_work &leapfrog &transfer;
+      if (version >= 1)
+        archive &hypoelastic_correction;
     }
 
     /** Add the step's entries. */
@@ -100,11 +109,12 @@ namespace grainmpm
       boundary_work += statistics.ledger.boundary_work;
       leapfrog += statistics.ledger.leapfrog_energy_change;
       transfer += statistics.ledger.transfer_energy_change;
+      hypoelastic_correction += statistics.ledger.hypoelastic_correction;
     }
 
     /**
      * E(now) - E(0) + plastic + friction - boundary - transfer
-     * - leapfrog: zero for an exact balance.
+     * - leapfrog - hypoelastic correction: zero for an exact balance.
      */
     template <int dim>
     double
@@ -112,7 +122,7 @@ namespace grainmpm
             const EnergySummary<dim> &initial) const
     {
       return now.total() - initial.total() + plastic_work + friction_work -
-             boundary_work - transfer - leapfrog;
+             boundary_work - transfer - leapfrog - hypoelastic_correction;
     }
   };
 
@@ -187,5 +197,11 @@ namespace grainmpm
     HistoryFile                                                 file;
   };
 } // namespace grainmpm
+
+/**
+ * Version 1 of the ledger adds the hypoelastic correction; a checkpoint
+ * of version 0 resumes with it zero.
+ */
+BOOST_CLASS_VERSION(grainmpm::EnergyLedger, 1)
 
 #endif

@@ -218,14 +218,14 @@ namespace grainmpm
      * Constitutive update of every deformable particle with the strain
      * increment dt grad v from @p velocities: new stress and history,
      * F <- (I + dt grad v) F and V = det(F) V_0. Adds the plastic work
-     * to @p plastic_work and, if given, the new elastic energy to
-     * @p strain_energy.
+     * and the hypoelastic correction to @p ledger and, if given, the new
+     * elastic energy to @p strain_energy.
      */
     void
     update_particle_states(Particles::ParticleHandler<dim> &particle_handler,
                            const VectorType                &velocities,
                            const double                     dt,
-                           double                          &plastic_work,
+                           LedgerIncrements                &ledger,
                            double *strain_energy = nullptr) const;
 
     /**
@@ -251,7 +251,7 @@ namespace grainmpm
       const double                     dt,
       const Tensor<1, dim>            &gravity,
       VectorType                      &forces,
-      double                          &plastic_work) const;
+      LedgerIncrements                &ledger) const;
 
     /**
      * Grid to particle: FLIP/PIC velocity update from @p new_velocities
@@ -332,13 +332,14 @@ namespace grainmpm
     /**
      * The loop of update_particle_states(), adding the forces to
      * @p forces (dim per local slot) if it is given; with @p store false
-     * the particles keep their state (trial_strain_energy()).
+     * the particles keep their state (trial_strain_energy()) and the
+     * hypoelastic correction is not computed.
      */
     void
     update_states(Particles::ParticleHandler<dim> &particle_handler,
                   const VectorType                &velocities,
                   const double                     dt,
-                  double                          &plastic_work,
+                  LedgerIncrements                &ledger,
                   double                          *strain_energy,
                   const Tensor<1, dim>            &gravity,
                   VectorType                      *forces,
