@@ -68,5 +68,6 @@ W = column(energy, "boundary_work")
 print(f"\nplaten work W = {W:.4g}; in units of W: energy {column(energy, 'total_energy') / W:.3f}, "
       f"kinetic {column(energy, 'kinetic_energy') / W:.2g}, friction work {column(energy, 'friction_work') / W:.3f}, "
       f"transfers {column(energy, 'transfer_work') / W:.4f}, leapfrog {column(energy, 'leapfrog_work') / W:.4f}, "
+      f"hypoelastic correction {column(energy, 'hypoelastic_correction') / W:.4f}, "
       f"balance residual {column(energy, 'balance_residual') / W:.4f}")
 PYTHON

@@ -89,10 +89,12 @@ def main(argv):
 
     runs = [read_columns(f) for f in arguments.files]
     ledger = ["plastic_work", "friction_work", "boundary_work", "transfer_work",
-              "leapfrog_work", "balance_residual"]
-    # (leapfrog_work: files written since it was added; optional)
+              "leapfrog_work", "hypoelastic_correction", "balance_residual"]
+    # (leapfrog_work and hypoelastic_correction: files written since they
+    # were added; optional)
+    optional = ("leapfrog_work", "hypoelastic_correction")
     with_ledger = all(
-        all(name in run for name in ledger if name != "leapfrog_work") for run in runs
+        all(name in run for name in ledger if name not in optional) for run in runs
     )
     n_rows = 3 if with_ledger else 2
 
@@ -149,6 +151,7 @@ def main(argv):
                 "boundary_work": "y-",
                 "transfer_work": "b--",
                 "leapfrog_work": "r--",
+                "hypoelastic_correction": "g:",
                 "balance_residual": "k-",
             }
             for name in ledger:
