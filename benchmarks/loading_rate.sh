@@ -8,7 +8,7 @@
 #   frictionless and with Coulomb friction 0.3 (FRICTIONS);
 # - dense: the jammed 100 disks (mu = 0.3, P/E = 1.4e-3) of
 #   prm/dense_packing_preparation.prm, resumed from its checkpoint at
-#   t = 1.4848 (DENSE_CHECKPOINT, or made first, 6 to 16 minutes on two
+#   t = 1.4848 (DENSE_CHECKPOINT, or made first, 6 to 24 minutes on two
 #   cores) in their own output directories, over the travel DENSE_TRAVEL (default
 #   1.11e-3, 0.3 time units at V/c = 1e-4). Friction is the case's.
 # Rates are RATES (V / c, c the dilatational wave speed), contact that of
