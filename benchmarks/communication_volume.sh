@@ -35,6 +35,7 @@ build=${1:-build}
 steps=${STEPS:-20}
 cases=${CASES:-block2d block3d column2d column3d}
 grainmpm=$PWD/$build/source/grainmpm
+cmake --build "$build" --target mpi_traffic > /dev/null
 traffic=$PWD/$build/benchmarks/libmpi_traffic.so
 work=$PWD/$build/benchmarks/communication_volume
 mkdir -p "$work"

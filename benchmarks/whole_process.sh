@@ -53,6 +53,7 @@ if [ "$dim" = 3 ]; then cells=${CELLS:-64}; else cells=${CELLS:-1024}; fi
 per_dir=${PER_DIR:-2}
 kernels=${KERNELS:-linear uGIMP}
 grainmpm=$PWD/$build/source/grainmpm
+cmake --build "$build" --target explicit_step > /dev/null
 work=$PWD/$build/benchmarks/whole_process
 mkdir -p "$work"
 mpirun=(mpirun --allow-run-as-root --oversubscribe)
