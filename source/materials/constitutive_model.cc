@@ -32,7 +32,10 @@ namespace grainmpm
   create_constitutive_model(const MaterialParameters &material,
                             const TwoDimensionalModel model)
   {
-    return ConstitutiveModelFactory::create<dim>(material, model);
+    std::unique_ptr<ConstitutiveModel<dim>> result =
+      ConstitutiveModelFactory::create<dim>(material, model);
+    result->set_kirchhoff_rate(material.hypoelastic_stress == "Kirchhoff");
+    return result;
   }
 
 

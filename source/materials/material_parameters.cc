@@ -98,6 +98,18 @@ namespace grainmpm
                       initial_stress_syntax() +
                         "The grains of this material start with it unless they "
                         "give their own; empty: zero. Units: stress.");
+    prm.add_parameter(
+      "Hypoelastic stress",
+      hypoelastic_stress,
+      "The stress whose Jaumann rate the elastic increment C : dt D gives. "
+      "'Kirchhoff': tau = J sigma (J = V / V0); the elastic energy of a "
+      "point, V0 W(tau), changes by the work of its stresses, and a purely "
+      "volumetric motion gives Hencky's law tau = K ln J. 'Cauchy': sigma "
+      "itself; the energy V W(sigma) differs from the work by the "
+      "hypoelastic correction of the energy ledger. The points store and "
+      "write the Cauchy stress either way; the two differ at first order "
+      "in the strain. Dimensionless.",
+      Patterns::Selection("Kirchhoff|Cauchy"));
     for (auto &[model_name, parameters] : model_parameters)
       parameters->declare(prm);
   }

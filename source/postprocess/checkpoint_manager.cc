@@ -449,7 +449,8 @@ namespace grainmpm
             << material.constitutive_model << ", density "
             << material.density / parameters.time_stepping.mass_scaling
             << ", Young's modulus " << material.youngs_modulus
-            << ", Poisson's ratio " << material.poissons_ratio;
+            << ", Poisson's ratio " << material.poissons_ratio
+            << ", hypoelastic stress " << material.hypoelastic_stress;
         out << material.get_model_parameters().fingerprint() << '\n';
       }
     out << "grains: " << grains.size() << '\n';

@@ -91,10 +91,10 @@ namespace grainmpm
         summary.kinetic += 0.5 * mass * velocity.norm_square();
         summary.momentum += mass * velocity;
         moment += mass * particle.get_location();
-        summary.elastic +=
-          properties[Layout::volume] *
-          materials[grains[grain].material]->strain_energy_density(
-            Layout::get_stress(properties));
+        summary.elastic += materials[grains[grain].material]->strain_energy(
+          Layout::get_stress(properties),
+          properties[Layout::volume],
+          properties[Layout::initial_volume]);
       }
     summary.kinetic  = Utilities::MPI::sum(summary.kinetic, communicator);
     summary.elastic  = Utilities::MPI::sum(summary.elastic, communicator);

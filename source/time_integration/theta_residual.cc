@@ -57,6 +57,7 @@ namespace grainmpm
     particle_models.resize(n_particles);
     particle_stresses.resize(n_particles);
     particle_volumes.resize(n_particles);
+    particle_initial_volumes.resize(n_particles);
     particle_plastic_strains.resize(n_particles);
     transfer.for_each_particle(
       particle_handler, [&](const std::size_t p, const auto &particle) {
@@ -67,6 +68,7 @@ namespace grainmpm
                                           materials[grains[grain].material].get();
         particle_stresses[p]          = Layout::get_stress(properties);
         particle_volumes[p]           = properties[Layout::volume];
+        particle_initial_volumes[p]   = properties[Layout::initial_volume];
         particle_plastic_strains[p]   = properties[Layout::plastic_strain];
       });
 
@@ -416,12 +418,17 @@ namespace grainmpm
         // dt grad v^theta.
         Tensor<2, dim> increment = transfer->velocity_gradient(p, theta_values);
         increment *= dt_local;
-        double plastic_strain                   = particle_plastic_strains[p];
-        const SymmetricTensor<2, 3> &old_stress = particle_stresses[p];
-        const SymmetricTensor<2, 3>  new_stress =
+        double plastic_strain = particle_plastic_strains[p];
+        // The stress the model updates: J sigma (Kirchhoff) or sigma.
+        const SymmetricTensor<2, 3> old_stress =
+          model->rate_stress_factor(particle_volumes[p],
+                                    particle_initial_volumes[p]) *
+          particle_stresses[p];
+        const SymmetricTensor<2, 3> new_stress =
           model->update_stress(old_stress, increment, plastic_strain);
 
-        // V^theta sigma^theta in the plane. A trial that inverts a particle
+        // V^theta sigma^theta in the plane (V0 tau^theta with the Kirchhoff
+        // stress). A trial that inverts a particle
         // (det(I + dt grad v) <= 0) has no meaning: its residual is NaN,
         // which the line search and the failure policy reject.
         double jacobian;
@@ -433,7 +440,9 @@ namespace grainmpm
         if (!(jacobian > 0.))
           inverted = true;
         const double volume =
-          particle_volumes[p] * ((1. - theta_local) + theta_local * jacobian);
+          model->energy_volume(particle_volumes[p] *
+                                 ((1. - theta_local) + theta_local * jacobian),
+                               particle_initial_volumes[p]);
         double stress[dim][dim];
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = i; j < dim; ++j)
@@ -545,8 +554,9 @@ namespace grainmpm
     for (std::size_t p = 0; p < particle_models.size(); ++p)
       if (particle_models[p] != nullptr)
         energy +=
-          particle_volumes[p] *
-          particle_models[p]->strain_energy_density(particle_stresses[p]);
+          particle_models[p]->strain_energy(particle_stresses[p],
+                                            particle_volumes[p],
+                                            particle_initial_volumes[p]);
     return energy;
   }
 

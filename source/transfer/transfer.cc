@@ -373,29 +373,41 @@ namespace grainmpm
           *materials[grains[grain].material];
         const double old_plastic_strain = properties[Layout::plastic_strain];
         double       plastic_strain     = old_plastic_strain;
-        const SymmetricTensor<2, 3> old_stress = Layout::get_stress(properties);
-        const double                old_volume = properties[Layout::volume];
+        // The model updates s = J sigma (Kirchhoff) or sigma (Cauchy); the
+        // point stores sigma.
+        const double initial_volume = properties[Layout::initial_volume];
+        const double old_volume     = properties[Layout::volume];
+        const double new_volume     = trial_volume<dim>(properties, increment);
+        const SymmetricTensor<2, 3> old_rate_stress =
+          model.rate_stress_factor(old_volume, initial_volume) *
+          Layout::get_stress(properties);
+        const SymmetricTensor<2, 3> rate_stress =
+          model.update_stress(old_rate_stress, increment, plastic_strain);
         const SymmetricTensor<2, 3> stress =
-          model.update_stress(old_stress, increment, plastic_strain);
+          rate_stress / model.rate_stress_factor(new_volume, initial_volume);
         const double volume         = store ? store_particle_state(properties,
                                                            stress,
                                                            plastic_strain,
                                                            increment) :
-                                              trial_volume<dim>(properties, increment);
-        const double energy_density = model.strain_energy_density(stress);
+                                              new_volume;
+        const double energy_density = model.strain_energy_density(rate_stress);
+        const double energy_volume =
+          model.energy_volume(volume, initial_volume);
         if (strain_energy != nullptr)
-          *strain_energy += volume * energy_density;
+          *strain_energy += energy_volume * energy_density;
         ledger.plastic_work +=
-          volume *
-          model.plastic_work_density(stress,
+          energy_volume *
+          model.plastic_work_density(rate_stress,
                                      plastic_strain - old_plastic_strain);
-        // V W changes by the mean volume times the change of W, the elastic
-        // work of the stresses, plus the mean W times the change of V,
-        // which is not work.
+        // The energy V_e W(s) changes by the mean V_e times the change of W,
+        // the elastic work of the stresses, plus the mean W times the change
+        // of V_e, which is not work: zero for the Kirchhoff stress (V_e =
+        // V0), the hypoelastic correction of the Cauchy stress (V_e = V).
         if (store)
           ledger.hypoelastic_correction +=
-            0.5 * (model.strain_energy_density(old_stress) + energy_density) *
-            (volume - old_volume);
+            0.5 *
+            (model.strain_energy_density(old_rate_stress) + energy_density) *
+            (energy_volume - model.energy_volume(old_volume, initial_volume));
         if (force_array != nullptr)
           add_force(
             p, properties[Layout::mass], volume, stress, gravity, force_array);

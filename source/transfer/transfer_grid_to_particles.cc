@@ -145,10 +145,10 @@ namespace grainmpm
     using Layout      = MaterialPointLayout<dim>;
     const double mass = properties[Layout::mass];
     sums.kinetic_energy += 0.5 * mass * velocity.norm_square();
-    sums.elastic_energy +=
-      properties[Layout::volume] *
-      materials[grains[grain].material]->strain_energy_density(
-        Layout::get_stress(properties));
+    sums.elastic_energy += materials[grains[grain].material]->strain_energy(
+      Layout::get_stress(properties),
+      properties[Layout::volume],
+      properties[Layout::initial_volume]);
     for (unsigned int d = 0; d < dim; ++d)
       {
         sums.momentum[d] += mass * velocity[d];

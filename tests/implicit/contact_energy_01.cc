@@ -49,9 +49,10 @@ particle_energy(const ImplicitFixture<2> &fixture,
       if (with_kinetic)
         energy += 0.5 * properties[Layout::mass] *
                   Layout::get_velocity(properties).norm_square();
-      energy += properties[Layout::volume] *
-                fixture.materials[0]->strain_energy_density(
-                  Layout::get_stress(properties));
+      energy +=
+        fixture.materials[0]->strain_energy(Layout::get_stress(properties),
+                                            properties[Layout::volume],
+                                            properties[Layout::initial_volume]);
     }
   return energy;
 }

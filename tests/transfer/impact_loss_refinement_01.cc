@@ -30,11 +30,12 @@ energy(const ImplicitFixture<2> &fixture)
   for (const auto &particle : *fixture.particle_handler)
     {
       const auto properties = particle.get_properties();
-      total += 0.5 * properties[Layout::mass] *
-                 Layout::get_velocity(properties).norm_square() +
-               properties[Layout::volume] *
-                 fixture.materials[0]->strain_energy_density(
-                   Layout::get_stress(properties));
+      total +=
+        0.5 * properties[Layout::mass] *
+          Layout::get_velocity(properties).norm_square() +
+        fixture.materials[0]->strain_energy(Layout::get_stress(properties),
+                                            properties[Layout::volume],
+                                            properties[Layout::initial_volume]);
     }
   return total;
 }

@@ -83,6 +83,61 @@ namespace grainmpm
     {
       return 0.;
     }
+
+    /**
+     * Whether update_stress() acts on the Kirchhoff stress tau = J sigma
+     * (the default) or on the Cauchy stress (Materials/NAME/Hypoelastic
+     * stress). The points store the Cauchy stress either way; the
+     * callers convert with rate_stress_factor().
+     */
+    void
+    set_kirchhoff_rate(const bool kirchhoff)
+    {
+      kirchhoff_rate = kirchhoff;
+    }
+
+    bool
+    updates_kirchhoff_stress() const
+    {
+      return kirchhoff_rate;
+    }
+
+    /**
+     * The factor that turns the Cauchy stress of a point with volume
+     * @p volume (@p initial_volume at t = 0) into the stress update_stress()
+     * acts on: J = V / V0 for the Kirchhoff stress, 1 for the Cauchy stress.
+     */
+    double
+    rate_stress_factor(const double volume, const double initial_volume) const
+    {
+      return kirchhoff_rate ? volume / initial_volume : 1.;
+    }
+
+    /**
+     * The volume that the stress of update_stress() and its energy density
+     * are per: V0 (Kirchhoff) or @p volume (Cauchy). The elastic energy of
+     * a point is energy_volume() times strain_energy_density() of
+     * rate_stress_factor() times its Cauchy stress.
+     */
+    double
+    energy_volume(const double volume, const double initial_volume) const
+    {
+      return kirchhoff_rate ? initial_volume : volume;
+    }
+
+    /** The elastic energy of a point with Cauchy stress @p stress. */
+    double
+    strain_energy(const SymmetricTensor<2, 3> &stress,
+                  const double                 volume,
+                  const double                 initial_volume) const
+    {
+      return energy_volume(volume, initial_volume) *
+             strain_energy_density(rate_stress_factor(volume, initial_volume) *
+                                   stress);
+    }
+
+  private:
+    bool kirchhoff_rate = true;
   };
 
   /**

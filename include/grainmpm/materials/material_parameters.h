@@ -82,6 +82,12 @@ namespace grainmpm
     double material_fringe_value = 0.;
     /** Expressions of the initial stress (empty: zero). */
     std::string initial_stress;
+    /**
+     * The stress whose Jaumann rate the model gives: "Kirchhoff"
+     * (tau = J sigma, stored energy V0 W(tau)) or "Cauchy" (sigma, energy
+     * V W(sigma)); doc/theory.md section 13.
+     */
+    std::string hypoelastic_stress = "Kirchhoff";
     /** The entries of every registered model, by the model's name. */
     std::map<std::string, std::shared_ptr<ConstitutiveModelParameters>>
       model_parameters;

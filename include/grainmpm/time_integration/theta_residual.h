@@ -374,7 +374,9 @@ namespace grainmpm
     std::vector<const ConstitutiveModel<dim> *> particle_models;
     std::vector<SymmetricTensor<2, 3>>          particle_stresses;
     std::vector<double>                         particle_volumes;
-    std::vector<double>                         particle_plastic_strains;
+    /** Volumes at t = 0 (the Kirchhoff stress is J sigma, J = V / V0). */
+    std::vector<double> particle_initial_volumes;
+    std::vector<double> particle_plastic_strains;
 
     std::vector<bool> slot_active;
     std::vector<bool> slot_rigid;
