@@ -246,20 +246,6 @@ namespace grainmpm
 
 
   template <int dim>
-  void
-  ThetaResidual<dim>::jacobian_diagonal(const VectorType   &x,
-                                        const StepFunction &step,
-                                        VectorType         &diagonal)
-  {
-    VectorType simplified_residual;
-    simplified_residual.reinit(x, true);
-    evaluate(x, simplified_residual, true);
-    probe_diagonal(x, simplified_residual, diagonal, step);
-  }
-
-
-
-  template <int dim>
   unsigned int
   ThetaResidual<dim>::project(const VectorType           &velocities,
                               VectorType                 &projected,
@@ -526,27 +512,6 @@ namespace grainmpm
 
 
   template <int dim>
-  unsigned int
-  ThetaResidual<dim>::colour(const unsigned int dof) const
-  {
-    const unsigned int    slot     = dof / dim;
-    const Point<dim>      position = grid.node_position(layout->node(slot));
-    const Point<dim>     &lower    = grid.lower_corner();
-    const Tensor<1, dim> &h        = grid.cell_size();
-    unsigned int          c        = 0;
-    unsigned int          factor   = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        const long index = std::lround((position[d] - lower[d]) / h[d]);
-        c += factor * static_cast<unsigned int>(index % 3);
-        factor *= 3;
-      }
-    return c + factor * (dof % dim);
-  }
-
-
-
-  template <int dim>
   double
   ThetaResidual<dim>::old_strain_energy() const
   {
@@ -558,48 +523,6 @@ namespace grainmpm
                                             particle_volumes[p],
                                             particle_initial_volumes[p]);
     return energy;
-  }
-
-
-
-  template <int dim>
-  void
-  ThetaResidual<dim>::probe_diagonal(const VectorType   &velocities,
-                                     const VectorType   &residual,
-                                     VectorType         &diagonal,
-                                     const StepFunction &step) const
-  {
-    diagonal.reinit(residual, true);
-    diagonal = 1.;
-    VectorType direction, perturbed, probed;
-    direction.reinit(residual, true);
-    perturbed.reinit(residual, true);
-    probed.reinit(residual, true);
-    std::vector<unsigned int> dof_colours(residual.locally_owned_size());
-    for (unsigned int k = 0; k < dof_colours.size(); ++k)
-      dof_colours[k] = colour(k);
-    for (unsigned int c = 0; c < n_colours; ++c)
-      {
-        direction = 0.;
-        bool any  = false;
-        for (unsigned int k = 0; k < dof_colours.size(); ++k)
-          if (dof_colours[k] == c && slot_active[k / dim] &&
-              !slot_rigid[k / dim])
-            {
-              direction.local_element(k) = 1.;
-              any                        = true;
-            }
-        if (Utilities::MPI::max(any ? 1U : 0U, communicator()) == 0)
-          continue;
-        const double eps = step(velocities, direction);
-        perturbed        = velocities;
-        perturbed.add(eps, direction);
-        evaluate(perturbed, probed, true);
-        for (unsigned int k = 0; k < dof_colours.size(); ++k)
-          if (direction.local_element(k) != 0.)
-            diagonal.local_element(k) =
-              (probed.local_element(k) - residual.local_element(k)) / eps;
-      }
   }
 
 
