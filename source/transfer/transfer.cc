@@ -14,44 +14,39 @@ namespace grainmpm
   namespace
   {
     /**
-     * Store the new @p stress and @p plastic_strain of a particle with
-     * @p properties, update its deformation gradient by the increment
-     * @p increment (dt grad v: F <- (I + dt grad v) F) and its volume
-     * det(F) V_0. Returns the new volume.
+     * The deformation gradient of the particle with @p properties after
+     * the increment @p increment (dt grad v): (I + dt grad v) F.
      */
     template <int dim>
-    double
-    store_particle_state(const ArrayView<double>     &properties,
-                         const SymmetricTensor<2, 3> &stress,
-                         const double                 plastic_strain,
-                         const Tensor<2, dim>        &increment)
+    Tensor<2, dim>
+    updated_deformation_gradient(const ArrayView<double> &properties,
+                                 const Tensor<2, dim>    &increment)
     {
-      using Layout = MaterialPointLayout<dim>;
-      Layout::set_stress(stress, properties);
-      properties[Layout::plastic_strain] = plastic_strain;
-      Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
-      F += increment * F;
-      Layout::set_deformation_gradient(F, properties);
-      properties[Layout::volume] =
-        determinant(F) * properties[Layout::initial_volume];
-      return properties[Layout::volume];
+      using Layout           = MaterialPointLayout<dim>;
+      const Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
+      return F + increment * F;
     }
 
 
 
     /**
-     * The volume store_particle_state() would give the particle with
-     * @p properties, without storing anything.
+     * Store the new @p stress, @p plastic_strain, deformation gradient
+     * @p F and volume @p volume (det(F) V_0) of the particle with
+     * @p properties.
      */
     template <int dim>
-    double
-    trial_volume(const ArrayView<double> &properties,
-                 const Tensor<2, dim>    &increment)
+    void
+    store_particle_state(const ArrayView<double>     &properties,
+                         const SymmetricTensor<2, 3> &stress,
+                         const double                 plastic_strain,
+                         const Tensor<2, dim>        &F,
+                         const double                 volume)
     {
-      using Layout           = MaterialPointLayout<dim>;
-      const Tensor<2, dim> F = Layout::get_deformation_gradient(properties);
-      return determinant(F + increment * F) *
-             properties[Layout::initial_volume];
+      using Layout = MaterialPointLayout<dim>;
+      Layout::set_stress(stress, properties);
+      properties[Layout::plastic_strain] = plastic_strain;
+      Layout::set_deformation_gradient(F, properties);
+      properties[Layout::volume] = volume;
     }
 
 
@@ -377,19 +372,18 @@ namespace grainmpm
         // point stores sigma.
         const double initial_volume = properties[Layout::initial_volume];
         const double old_volume     = properties[Layout::volume];
-        const double new_volume     = trial_volume<dim>(properties, increment);
+        const Tensor<2, dim> F =
+          updated_deformation_gradient<dim>(properties, increment);
+        const double                volume = determinant(F) * initial_volume;
         const SymmetricTensor<2, 3> old_rate_stress =
           model.rate_stress_factor(old_volume, initial_volume) *
           Layout::get_stress(properties);
         const SymmetricTensor<2, 3> rate_stress =
           model.update_stress(old_rate_stress, increment, plastic_strain);
         const SymmetricTensor<2, 3> stress =
-          rate_stress / model.rate_stress_factor(new_volume, initial_volume);
-        const double volume         = store ? store_particle_state(properties,
-                                                           stress,
-                                                           plastic_strain,
-                                                           increment) :
-                                              new_volume;
+          rate_stress / model.rate_stress_factor(volume, initial_volume);
+        if (store)
+          store_particle_state(properties, stress, plastic_strain, F, volume);
         const double energy_density = model.strain_energy_density(rate_stress);
         const double energy_volume =
           model.energy_volume(volume, initial_volume);
