@@ -96,12 +96,6 @@ namespace grainmpm
       kirchhoff_rate = kirchhoff;
     }
 
-    bool
-    updates_kirchhoff_stress() const
-    {
-      return kirchhoff_rate;
-    }
-
     /**
      * The factor that turns the Cauchy stress of a point with volume
      * @p volume (@p initial_volume at t = 0) into the stress update_stress()
