@@ -19,10 +19,10 @@
 // the impact, -2.4 % of E0 at the deepest compression of the two disks and
 // +1.7 % after, and without it the balance swung with it (largest 3.9 % of
 // E0 for the two disks, 2.9 % for the single grain). Measured now, with the gap
-// check of the contact law (the default): the largest |balance| 1.8 % of E0 for
-// the two disks (-1.6 % at the end, lost at the first contact, where the nodes
+// check of the contact law (the default): the largest |balance| 1.7 % of E0 for
+// the two disks (-1.5 % at the end, lost at the first contact, where the nodes
 // of the two fields are caught at a common normal velocity); 1.6 % for the
-// single grain (-1.10 % after its five wall impacts, about -0.2 % each; without
+// single grain (-1.08 % after its five wall impacts, about -0.2 % each; without
 // the gap check -0.45 %: a wall catches the grain when its surface arrives,
 // with the full mass of the nodes there, and the kinetic energy of that jump,
 // 1/2 m a^2, is not in the leapfrog term); under 0.33 % of the platen work at
