@@ -55,7 +55,7 @@ namespace grainmpm
     // The particle mirror, in cache order.
     const std::size_t n_particles = transfer.get_cache().n_particles();
     particle_models.resize(n_particles);
-    particle_stresses.resize(n_particles);
+    particle_rate_stresses.resize(n_particles);
     particle_volumes.resize(n_particles);
     particle_initial_volumes.resize(n_particles);
     particle_plastic_strains.resize(n_particles);
@@ -66,10 +66,15 @@ namespace grainmpm
         particle_models[p]            = grains[grain].rigid ?
                                           nullptr :
                                           materials[grains[grain].material].get();
-        particle_stresses[p]          = Layout::get_stress(properties);
         particle_volumes[p]           = properties[Layout::volume];
         particle_initial_volumes[p]   = properties[Layout::initial_volume];
-        particle_plastic_strains[p]   = properties[Layout::plastic_strain];
+        // The stress the model updates: J sigma (Kirchhoff) or sigma.
+        if (particle_models[p] != nullptr)
+          particle_rate_stresses[p] =
+            particle_models[p]->rate_stress_factor(
+              particle_volumes[p], particle_initial_volumes[p]) *
+            Layout::get_stress(properties);
+        particle_plastic_strains[p] = properties[Layout::plastic_strain];
       });
 
     // Unknowns: slots with a mass above 1e-6 of the largest particle mass
@@ -404,13 +409,9 @@ namespace grainmpm
         // dt grad v^theta.
         Tensor<2, dim> increment = transfer->velocity_gradient(p, theta_values);
         increment *= dt_local;
-        double plastic_strain = particle_plastic_strains[p];
-        // The stress the model updates: J sigma (Kirchhoff) or sigma.
-        const SymmetricTensor<2, 3> old_stress =
-          model->rate_stress_factor(particle_volumes[p],
-                                    particle_initial_volumes[p]) *
-          particle_stresses[p];
-        const SymmetricTensor<2, 3> new_stress =
+        double plastic_strain                   = particle_plastic_strains[p];
+        const SymmetricTensor<2, 3> &old_stress = particle_rate_stresses[p];
+        const SymmetricTensor<2, 3>  new_stress =
           model->update_stress(old_stress, increment, plastic_strain);
 
         // V^theta sigma^theta in the plane (V0 tau^theta with the Kirchhoff
@@ -519,9 +520,9 @@ namespace grainmpm
     for (std::size_t p = 0; p < particle_models.size(); ++p)
       if (particle_models[p] != nullptr)
         energy +=
-          particle_models[p]->strain_energy(particle_stresses[p],
-                                            particle_volumes[p],
-                                            particle_initial_volumes[p]);
+          particle_models[p]->energy_volume(particle_volumes[p],
+                                            particle_initial_volumes[p]) *
+          particle_models[p]->strain_energy_density(particle_rate_stresses[p]);
     return energy;
   }
 

@@ -372,9 +372,11 @@ namespace grainmpm
 
     /** The structure-of-arrays particle mirror (cache order). */
     std::vector<const ConstitutiveModel<dim> *> particle_models;
-    std::vector<SymmetricTensor<2, 3>>          particle_stresses;
-    std::vector<double>                         particle_volumes;
-    /** Volumes at t = 0 (the Kirchhoff stress is J sigma, J = V / V0). */
+    /** The stress the model updates: J sigma (Kirchhoff, J = V / V0) or
+     * the Cauchy stress sigma (ConstitutiveModel::rate_stress_factor()). */
+    std::vector<SymmetricTensor<2, 3>> particle_rate_stresses;
+    std::vector<double>                particle_volumes;
+    /** Volumes at t = 0 (the energy of the Kirchhoff stress is per V0). */
     std::vector<double> particle_initial_volumes;
     std::vector<double> particle_plastic_strains;
 
