@@ -166,10 +166,15 @@ namespace grainmpm
     const GrainFieldLayout<dim> &layout         = transfer.get_layout();
     const std::vector<bool>     &field_is_rigid = transfer.get_field_is_rigid();
     copy_slot_vector(velocities_old, state.velocities_new);
+    // A slot whose mass is round-off (a point on the edge of the node's
+    // support, weight ~1e-32) keeps its velocity: f / m would be ~1e12
+    // there, and with USL that velocity strains the points beside it (a
+    // block started in its lithostatic equilibrium then moves).
+    const double round_off_mass = 1e-12 * state.masses.linfty_norm();
     for (unsigned int slot = 0; slot < layout.n_slots(); ++slot)
       {
         const double mass = state.masses.local_element(slot);
-        if (mass > 0. && !field_is_rigid[layout.field(slot)])
+        if (mass > round_off_mass && !field_is_rigid[layout.field(slot)])
           for (unsigned int d = 0; d < dim; ++d)
             state.velocities_new.local_element(slot * dim + d) +=
               dt * forces.local_element(slot * dim + d) / mass;

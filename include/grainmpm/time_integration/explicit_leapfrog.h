@@ -68,7 +68,7 @@ namespace grainmpm
     unsigned int
     apply_constraints(VectorType &velocities, const bool record);
 
-    /** v^L = v + dt f / m on deformable slots. */
+    /** v^L = v + dt f / m on deformable slots whose mass is not round-off. */
     void
     integrate_grid_velocities(const double dt);
 
