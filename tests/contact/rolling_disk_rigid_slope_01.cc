@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// Copyright (C) 2026 by the grainmpm authors
+
+// A disk on the slope of a rigid grain: a rigid rectangle 0.9 x 0.2 rotated
+// by 20 degrees (centre 0.5, 0.26) carries an elastic disk (R = 0.1 = 8 h,
+// rho = 1, E = 1000, nu = 0.3) that starts at rest touching its upper face,
+// under gravity g = 1 (vertical), Coulomb friction mu = 0.3 between them,
+// default contact, uGIMP, explicit at CFL 0.25 on 80 x 56 cells, to
+// t = 0.8. A rigid disk rolls without slipping (mu > tan(20 deg) / 3) and
+// its centre travels s = (1/3) g sin(20 deg) t^2 down the slope. Printed:
+// the centre's travel along the face against s, and the slip
+// 1 - R |theta| / travel, theta the rotation of grains.csv.
+//
+// Measured (2026-12-03): travel 0.87 of s, slip 7.7 % (the bound at this
+// resolution is 10 %). The travel falls short because the friction acts on
+// the disk's slots up to a cell above the contact point, a lever arm of
+// about 0.9 R. With Stress update = USL the disk was braked to 0.36 of s
+// (slip 41 %) by its small-mass slots inside the rigid grain.
+
+#include <cmath>
+
+#include "../tests.h"
+
+#include "../energy_csv.h"
+
+using namespace grainmpm;
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  run_case("slope", R"(
+set Dimension = 2
+subsection Background grid
+  set Upper corner    = 1, 0.7
+  set Number of cells = 80, 56
+end
+subsection Physics
+  set Gravity = 0, -1
+end
+subsection Materials
+  subsection elastic
+    set Density         = 1
+    set Young's modulus = 1000
+    set Poisson's ratio = 0.3
+  end
+end
+subsection Grains
+  subsection Slope
+    set Shape    = rectangle
+    set Centre   = 0.5, 0.26
+    set Size     = 0.9, 0.2
+    set Rotation = 20
+    set Material = elastic
+    set Rigid    = true
+  end
+  subsection Disk
+    set Shape    = disk
+    set Centre   = 0.66652, 0.53345
+    set Radius   = 0.1
+    set Material = elastic
+  end
+end
+subsection Contact
+  set Contact model        = Coulomb friction
+  set Friction coefficient = 0.3
+end
+subsection Time stepping
+  set End time = 0.8
+end
+subsection Output
+  set Output interval = 0.1
+end
+)");
+  const auto   disk  = grain_rows(read_csv("results-slope/grains.csv"), 2);
+  const double angle = 20. * numbers::PI / 180.;
+  // Down the slope: the face rises towards +x.
+  const auto along = [&](const unsigned int r) {
+    return -(disk.at("centre_x")[r] * std::cos(angle) +
+             disk.at("centre_y")[r] * std::sin(angle));
+  };
+  const unsigned int end     = disk.at("time").size() - 1;
+  const double       t       = disk.at("time")[end];
+  const double       travel  = along(end) - along(0);
+  const double       rolling = std::sin(angle) * t * t / 3.;
+  const double       theta =
+    std::abs(disk.at("rotation_z")[end] - disk.at("rotation_z")[0]);
+  const double slip = 1. - 0.1 * theta / travel;
+  deallog << std::fixed << std::setprecision(2) << "t = " << t
+          << ": travel / rolling = " << travel / rolling << " (within 3 %: "
+          << (std::abs(travel / rolling - 1.) < 0.03 ? "yes" : "no")
+          << "), slip = " << std::setprecision(3) << slip
+          << " (< 0.10: " << (std::abs(slip) < 0.1 ? "yes" : "no") << ")"
+          << std::endl;
+}
