@@ -24,6 +24,7 @@
 // grain.
 
 #include <cmath>
+#include <sstream>
 
 #include "../tests.h"
 
@@ -34,7 +35,9 @@ using namespace grainmpm;
 void
 slope(const double mu)
 {
-  const std::string mu_text = mu == 0.3 ? "0.3" : "0.05";
+  std::ostringstream mu_stream;
+  mu_stream << mu;
+  const std::string mu_text = mu_stream.str();
   run_case("slope_" + mu_text,
            R"(
 set Dimension = 2
