@@ -7,6 +7,7 @@
 #include <grainmpm/particles/grain_parameters.h>
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
 
 #include <utility>
 
@@ -29,6 +30,31 @@ namespace grainmpm
   template <int dim>
   std::pair<dealii::Point<dim>, dealii::Point<dim>>
   bounding_box(const GrainParameters<dim> &grain);
+
+  /**
+   * The outward unit normal of the shape of @p grain (a checked grain) seen
+   * from @p point: the gradient of the signed distance to its boundary,
+   * that is the direction from the nearest boundary point to @p point
+   * outside the shape, and the outward normal of the nearest face (edge)
+   * inside it. Zero where that direction is not defined (the centre of a
+   * disk or sphere).
+   */
+  template <int dim>
+  dealii::Tensor<1, dim>
+  outward_normal(const GrainParameters<dim> &grain,
+                 const dealii::Point<dim>   &point);
+
+  /**
+   * The signed distance from @p point to the boundary of the shape of
+   * @p grain (a checked grain), negative inside; @p normal is set to
+   * outward_normal().
+   */
+  template <int dim>
+  double
+  signed_distance(const GrainParameters<dim> &grain,
+                  const dealii::Point<dim>   &point,
+                  dealii::Tensor<1, dim>     &normal);
+
 } // namespace grainmpm
 
 #endif
