@@ -430,6 +430,7 @@ namespace grainmpm
           parameters.materials[grains[candidate.grain].material_index].density *
           volume;
         info[candidate.grain].n_particles += 1;
+        info[candidate.grain].centroid += point;
       }
     throw_on_all_ranks(not_finite, communicator);
     // The points were inserted grain by grain: store them cell by cell (the
@@ -443,6 +444,10 @@ namespace grainmpm
         info[g].mass = Utilities::MPI::sum(info[g].mass, communicator);
         info[g].n_particles =
           Utilities::MPI::sum(info[g].n_particles, communicator);
+        for (unsigned int d = 0; d < dim; ++d)
+          info[g].centroid[d] =
+            Utilities::MPI::sum(info[g].centroid[d], communicator) /
+            std::max<types::particle_index>(info[g].n_particles, 1);
         if (info[g].n_particles == 0)
           throw InputError(grains[g].source,
                            "the grain received no material point: it is "

@@ -5,7 +5,8 @@
 // rectangle, triangle in 2D; sphere, rotated box in 3D) approaches density
 // times the exact area (volume) as the grid is refined; every point lies in
 // its grain and its cell, carries mass = density x volume, F = I and the
-// initial velocity; GrainInfo agrees with the particles.
+// initial velocity; GrainInfo (mass, number and mean position of the points)
+// agrees with the particles.
 
 #include <grainmpm/base/parameters.h>
 #include <grainmpm/grid/background_grid.h>
@@ -137,6 +138,7 @@ test(const unsigned int n_cells)
   const unsigned int                 n_grains = grain_names.size();
   std::vector<double>                mass(n_grains, 0.);
   std::vector<types::particle_index> count(n_grains, 0);
+  std::vector<Tensor<1, dim>>        position_sum(n_grains);
   unsigned int                       n_outside = 0;
   double max_position_error = 0., max_property_error = 0.;
   double cell_volume = 1.;
@@ -149,6 +151,7 @@ test(const unsigned int n_cells)
       const Point<dim>   x          = particle.get_location();
       mass[g] += properties[Layout::mass];
       ++count[g];
+      position_sum[g] += x;
       if (!contains(parameters.grains[g], x))
         ++n_outside;
       const auto cell = particle.get_surrounding_cell();
@@ -190,6 +193,11 @@ test(const unsigned int n_cells)
       deallog << "  GrainInfo: mass / particle sum = " << info[g].mass / mass[g]
               << ", points " << info[g].n_particles
               << (info[g].n_particles == count[g] ? " (same)" : " (different)")
+              << ", centroid "
+              << ((info[g].centroid - position_sum[g] / count[g]).norm() <
+                      1e-12 ?
+                    "the points' mean" :
+                    "not the points' mean")
               << std::endl;
     }
   deallog << "points outside their grain: " << n_outside

@@ -36,6 +36,12 @@ namespace grainmpm
     /** Total mass and number of material points at creation. */
     double                mass        = 0.;
     types::particle_index n_particles = 0;
+    /**
+     * Mean position of the material points at creation (a rigid grain that
+     * has only been translated is where the points' mean has moved to from
+     * here: RigidGrainMotion::locate()).
+     */
+    Point<dim> centroid;
   };
 
   /**
