@@ -9,9 +9,13 @@
 namespace grainmpm
 {
   template <int dim>
-  GapEstimator<dim>::GapEstimator(const BackgroundGrid<dim> &grid,
-                                  const bool                 enabled)
+  GapEstimator<dim>::GapEstimator(const BackgroundGrid<dim>   &grid,
+                                  const RigidGrainMotion<dim> &rigid_motion,
+                                  const std::vector<bool>     &field_is_rigid,
+                                  const bool                   enabled)
     : grid(grid)
+    , rigid_motion(rigid_motion)
+    , field_is_rigid(field_is_rigid)
     , is_enabled(enabled)
   {}
 
@@ -31,6 +35,8 @@ namespace grainmpm
     this->dt = dt;
     slot_fills.resize(layout.n_slots());
     slot_centroids.resize(layout.n_slots());
+    slot_distances.assign(layout.n_slots(),
+                          std::numeric_limits<double>::quiet_NaN());
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       {
         const unsigned int node  = layout.node(s);
@@ -43,6 +49,10 @@ namespace grainmpm
             slot_centroids[s] = Tensor<1, dim>();
             continue;
           }
+        if (field_is_rigid[layout.field(s)])
+          slot_distances[s] =
+            rigid_motion.surface_distance(layout.field(s),
+                                          grid.node_position(node));
         const double volume = volumes.local_element((1 + dim) * s);
         slot_fills[s] = volume * (1U << __builtin_popcount(faces)) / support;
         // Centroids only where the walls need them.
@@ -69,9 +79,14 @@ namespace grainmpm
     const Tensor<1, dim> &h               = grid.cell_size();
     double                deformable_mass = 0., fill_sum = 0.;
     bool                  rigid_partner = false;
+    // The distance of the node from the surface of the first rigid field
+    // (the contact law's partner), where its shape is located.
+    double rigid_distance = std::numeric_limits<double>::quiet_NaN();
     for (unsigned int k = 0; k < node.n; ++k)
       {
         fill_sum += slot_fills[begin + k];
+        if (node.rigid[k] && !rigid_partner)
+          rigid_distance = slot_distances[begin + k];
         if (node.rigid[k])
           rigid_partner = true;
         else
@@ -90,9 +105,12 @@ namespace grainmpm
         // Where the surfaces of this field and of the others lie.
         const double fill = slot_fills[begin + k];
         const double gap =
-          std::sqrt(h_normal) *
-          (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
-           HatKernel::inverse_integral(fill));
+          std::isfinite(rigid_distance) ?
+            rigid_distance -
+              std::sqrt(h_normal) * HatKernel::inverse_integral(fill) :
+            std::sqrt(h_normal) *
+              (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
+               HatKernel::inverse_integral(fill));
         if (gap > 0.)
           allowed[k] = (rigid_partner ? 1. :
                                         (deformable_mass - node.masses[k]) /

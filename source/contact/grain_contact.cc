@@ -17,7 +17,7 @@ namespace grainmpm
     , grid(grid)
     , rigid_motion(rigid_motion)
     , field_is_rigid(field_is_rigid)
-    , gaps(grid, parameters.gap_check)
+    , gaps(grid, rigid_motion, field_is_rigid, parameters.gap_check)
   {}
 
 
@@ -36,14 +36,29 @@ namespace grainmpm
         Tensor<1, dim>     total;
         for (unsigned int s = begin; s < end; ++s)
           total += get_slot_vector<dim>(mass_gradients, s);
-        // n_g ~ g_g - sum_{k != g} g_k = 2 g_g - total: for two fields the
-        // two normals are exactly opposite. With the gap check, a deformable
-        // field whose mass gradient is smaller than a rigid partner's takes
-        // the rigid grain's normal: a curved grain resting on one node of a
-        // flat rigid face would otherwise get a normal that tilts with its
-        // displacement and pushes it further away.
+        // At a node of a rigid grain, every field takes the normal of the
+        // rigid grain's shape (the first rigid field's, the partner of the
+        // contact law): the gradient of its mass points across the
+        // staircase of its points wherever its faces are not aligned with
+        // the grid, and a grain sliding along it would climb the steps.
+        Tensor<1, dim> rigid_normal;
+        for (unsigned int s = begin; s < end; ++s)
+          if (field_is_rigid[layout.field(s)])
+            {
+              rigid_normal =
+                rigid_motion.surface_normal(layout.field(s),
+                                            grid.node_position(node));
+              break;
+            }
+        // Elsewhere (and at the nodes of a rigid grain that rotates or
+        // deforms) n_g ~ g_g - sum_{k != g} g_k = 2 g_g - total: for two
+        // fields the two normals are exactly opposite. With the gap check,
+        // a deformable field whose mass gradient is smaller than a rigid
+        // partner's takes the rigid grain's normal: a curved grain resting
+        // on one node of a flat rigid face would otherwise get a normal
+        // that tilts with its displacement and pushes it further away.
         Tensor<1, dim> rigid_gradient;
-        if (uses_gaps())
+        if (uses_gaps() && rigid_normal.norm_square() == 0.)
           for (unsigned int s = begin; s < end; ++s)
             if (field_is_rigid[layout.field(s)] &&
                 get_slot_vector<dim>(mass_gradients, s).norm() >
@@ -51,11 +66,21 @@ namespace grainmpm
               rigid_gradient = get_slot_vector<dim>(mass_gradients, s);
         for (unsigned int s = begin; s < end; ++s)
           {
+            const bool rigid = field_is_rigid[layout.field(s)];
+            if (rigid_normal.norm_square() > 0.)
+              {
+                const Tensor<1, dim> normal =
+                  rigid ?
+                    rigid_motion.surface_normal(layout.field(s),
+                                                grid.node_position(node)) :
+                    -rigid_normal;
+                set_slot_vector<dim>(normal, normals, s);
+                continue;
+              }
             const Tensor<1, dim> gradient =
               get_slot_vector<dim>(mass_gradients, s);
             const Tensor<1, dim> direction =
-              !field_is_rigid[layout.field(s)] &&
-                  rigid_gradient.norm() > gradient.norm() ?
+              !rigid && rigid_gradient.norm() > gradient.norm() ?
                 -rigid_gradient :
                 2. * gradient - total;
             const double length = direction.norm();

@@ -87,7 +87,10 @@ namespace grainmpm
       prescribed_velocity,
       "Velocity of a rigid grain, one expression of x, y (, z) and the "
       "time t per component separated by ';'. Ignored unless Rigid is "
-      "true. Units: length/time.");
+      "true. A velocity that does not vary in space translates the grain, "
+      "and contact then uses its exact shape (normal and distance of the "
+      "surface); one that varies in space (a rotation) falls back on the "
+      "grain's material points from its first step. Units: length/time.");
   }
 
 

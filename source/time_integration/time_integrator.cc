@@ -48,7 +48,10 @@ namespace grainmpm
                                      state.velocities_p2g);
     contact.prescribe_rigid_velocities(layout, state.velocities_p2g, time);
     if (normals)
-      contact.compute_normals(layout, state.mass_gradients, state.normals);
+      {
+        transfer.locate_rigid_grains(particle_handler, time);
+        contact.compute_normals(layout, state.mass_gradients, state.normals);
+      }
     else
       layout.reinit_vector(state.normals, dim);
     if (contact.uses_gaps())

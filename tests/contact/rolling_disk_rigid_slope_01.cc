@@ -9,19 +9,17 @@
 // t = 0.8. A rigid disk rolls without slipping (mu > tan(20 deg) / 3) and
 // its centre travels s = (1/3) g sin(20 deg) t^2 down the slope; with
 // mu = 0.05 (below tan(20 deg) / 3 = 0.121) it slides, and
-// s = (1/2) g (sin - mu cos) t^2. Printed: the centre's travel along the
-// face against s, and the slip 1 - R |theta| / travel, theta the rotation
-// of grains.csv.
+// s = (1/2) g (sin - mu cos) t^2; without friction (mu = 0) it slides
+// with s = (1/2) g sin(20 deg) t^2 and does not turn. Printed: the
+// centre's travel along the face against s, the slip 1 - R |theta| /
+// travel, theta the rotation of grains.csv, and theta without friction.
 //
-// Measured (2026-12-03): rolling, travel 0.87 of s and slip 7.7 % (the
-// bound at this resolution is 10 %); sliding, travel 0.83 of s. Both fall
-// short mostly because the contact normal at the nodes shared with the
-// rigid grain is its points' mass gradient, which points across the
-// staircase its points make on a face rotated off the grid: without
-// friction the disk slides 0.76 of g sin(20 deg) and turns, and 1.00 with
-// the face's exact normal. With Stress update = USL the rolling disk was
-// braked to 0.36 of s (slip 41 %) by its small-mass slots inside the rigid
-// grain.
+// The contact normal at the nodes shared with the rigid grain is the
+// outward normal of the rectangle, and the gap the node's distance from
+// it. Before (to 2026-12-03) they came from the rigid grain's points, whose
+// mass gradient points across the staircase they make on a face rotated
+// off the grid: without friction the disk slid 0.76 of s and turned by
+// 0.13 rad; rolling, travel 0.87 and slip 7.7 %; sliding, 0.83.
 
 #include <cmath>
 #include <sstream>
@@ -110,6 +108,8 @@ end
           << "), slip = " << std::setprecision(3) << slip;
   if (rolls)
     deallog << " (< 0.10: " << (std::abs(slip) < 0.1 ? "yes" : "no") << ")";
+  if (mu == 0.)
+    deallog << ", turned by " << std::setprecision(2) << theta << " rad";
   deallog << std::defaultfloat << std::endl;
 }
 
@@ -122,4 +122,5 @@ main(int argc, char **argv)
   initlog();
   slope(0.3);
   slope(0.05);
+  slope(0.);
 }

@@ -6,7 +6,9 @@
 // left wall and touching each other, Coulomb friction 0.3, compressed by a
 // rigid platen (grain 10) that starts 0.2 cells above the top row and
 // moves down, by default at V = 0.037 (V / c = 1e-3) to t = 0.3 (0.7 cells
-// of travel).
+// of travel). The slow approach starts with the platen touching the top
+// row (its contact is the rectangle's exact face, which the top disks'
+// points, reaching 0.1 cells above their circles, meet at once).
 
 #ifndef grainmpm_tests_implicit_jammed_stack_h
 #define grainmpm_tests_implicit_jammed_stack_h
@@ -16,13 +18,14 @@
 
 /**
  * The parameter text of the stack, with @p time_stepping (lines of the
- * subsection Time stepping) added, the platen moving down at
- * @p platen_speed to @p end_time.
+ * subsection Time stepping) added, the platen (centred at height
+ * @p platen_centre) moving down at @p platen_speed to @p end_time.
  */
 inline std::string
 stack_case(const std::string &time_stepping,
-           const std::string &platen_speed = "0.037",
-           const std::string &end_time     = "0.3")
+           const std::string &platen_speed  = "0.037",
+           const std::string &end_time      = "0.3",
+           const std::string &platen_centre = "0.633125")
 {
   std::ostringstream prm;
   prm << "set Dimension = 2\n"
@@ -44,7 +47,8 @@ stack_case(const std::string &time_stepping,
           << "    set Centre = " << x << ", " << y << "\n"
           << "    set Radius = 0.1\n    set Material = elastic\n  end\n";
   prm << "  subsection Platen\n    set Shape = rectangle\n"
-      << "    set Centre = 0.3125, 0.633125\n    set Size = 0.625, 0.06\n"
+      << "    set Centre = 0.3125, " << platen_centre
+      << "\n    set Size = 0.625, 0.06\n"
       << "    set Material = elastic\n    set Rigid = true\n"
       << "    set Prescribed velocity = 0; -" << platen_speed
       << "\n  end\nend\n"
@@ -57,13 +61,14 @@ stack_case(const std::string &time_stepping,
 }
 
 /**
- * The slow approach of the stack: the platen at V / c = 1e-5 (V = 3.7e-4)
- * to t = 1.4, 0.03 cells of travel, with @p time_stepping.
+ * The slow approach of the stack: the platen, touching the top row, at
+ * V / c = 1e-5 (V = 3.7e-4) to t = 1.4, 0.03 cells of travel, with
+ * @p time_stepping.
  */
 inline std::string
 slow_stack_case(const std::string &time_stepping)
 {
-  return stack_case(time_stepping, "0.00037", "1.4");
+  return stack_case(time_stepping, "0.00037", "1.4", "0.63");
 }
 
 /** The explicit stable step of the stack at CFL 0.25, 0.25 h / c. */

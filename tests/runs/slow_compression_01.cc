@@ -7,13 +7,15 @@
 // (boundary work W) and what the disks hold at the end (kinetic + elastic
 // energy E); measured (GRAINMPM_VERBOSE prints them):
 // - implicit theta = 1/2 at 30 times the explicit step (fixed: Maximum CFL
-//   number = 0): E / W = 0.979, with 1.8 Newton iterations per step and no
+//   number = 0): E / W = 0.968, with 1.2 Newton iterations per step and no
 //   rejected step;
 // - explicit, Stress update = USL (the shipped explicit case): W within
-//   0.06 % of the implicit one, E / W = 0.93 (energy lost, not created);
+//   0.3 % of the implicit one, E / W = 0.93 (energy lost, not created);
 // - explicit with the default USF: the strain velocity differs from the
 //   velocity that moves the points at the constraints, and the scheme
-//   creates energy under contact: E / W = 1.23, W 15 % high.
+//   creates energy under contact: E / W = 1.22, W 10 % high.
+// Before the contact used the platen's exact face (2026-12-03), E / W was
+// 0.979 implicit and the grown steps below were -0.5 % from explicit USL.
 
 #include <cstdlib>
 #include <iostream>
@@ -84,8 +86,8 @@ main(int argc, char **argv)
                                    "  set Stress update = USF\n");
 
   const auto yes = [](const bool b) { return b ? "yes" : "no"; };
-  deallog << "implicit: E / W within [0.97, 1.0]: "
-          << yes(implicit.E / implicit.W > 0.97 && implicit.E <= implicit.W)
+  deallog << "implicit: E / W within [0.96, 1.0]: "
+          << yes(implicit.E / implicit.W > 0.96 && implicit.E <= implicit.W)
           << std::endl;
   // At 30 times the explicit step the contact status of a slowly
   // compressed packing is updated after every Newton iteration until it
@@ -110,8 +112,8 @@ main(int argc, char **argv)
           << yes(usf.W > 1.05 * implicit.W) << std::endl;
 
   // The shipped case as it is, its steps grown by default, over the whole
-  // travel (t = 1): against explicit USL its platen work is -0.5 % in 165
-  // steps, where the fixed steps above take 314 and are -3.4 %. Over the
+  // travel (t = 1): against explicit USL its platen work is -3.2 % in 143
+  // steps (fixed steps of the size above take 314). Over the
   // first burst alone (to t = 0.2) the grown steps are +8 %: the steps grow
   // to 240 explicit steps while the platen approaches the packing through
   // empty space, and the energy bound cuts them back at the first impacts.
@@ -119,9 +121,9 @@ main(int argc, char **argv)
     compress("grown", "slow_compression_implicit.prm", "", 1.);
   const Compression usl_whole =
     compress("usl_whole", "slow_compression_explicit.prm", "", 1.);
-  deallog << "implicit, grown steps, to t = 1: platen work within 3 % of "
+  deallog << "implicit, grown steps, to t = 1: platen work within 4 % of "
              "explicit USL: "
-          << yes(std::abs(grown.W / usl_whole.W - 1.) < 0.03)
+          << yes(std::abs(grown.W / usl_whole.W - 1.) < 0.04)
           << ", fewer than 250 steps (314 fixed): " << yes(grown.steps < 250.)
           << std::endl;
   if (std::getenv("GRAINMPM_VERBOSE") != nullptr)

@@ -8,6 +8,7 @@
 #include <grainmpm/contact/contact_law.h>
 #include <grainmpm/grid/background_grid.h>
 #include <grainmpm/transfer/grain_field_layout.h>
+#include <grainmpm/transfer/rigid_grain_motion.h>
 #include <grainmpm/transfer/shape_functions.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
@@ -40,6 +41,9 @@ namespace grainmpm
    * (c = 1/3 for material that reaches the wall): where a grain's corner
    * covers only a part of the node's support along the wall, the filled
    * fraction puts the surface away from the wall, the centroid does not.
+   * A rigid grain whose shape RigidGrainMotion has located is not read from
+   * its fill fraction: its surface lies at the signed distance d of the
+   * node from its shape, gap = d - h_n Phi^{-1}(phi_g).
    */
   template <int dim>
   class GapEstimator
@@ -47,8 +51,15 @@ namespace grainmpm
   public:
     using VectorType = LinearAlgebra::distributed::Vector<double>;
 
-    /** The gaps on @p grid; all allowed approaches are 0 unless @p enabled. */
-    GapEstimator(const BackgroundGrid<dim> &grid, const bool enabled);
+    /**
+     * The gaps on @p grid, with the rigid grains (@p field_is_rigid per
+     * field) where @p rigid_motion locates them; all allowed approaches
+     * are 0 unless @p enabled.
+     */
+    GapEstimator(const BackgroundGrid<dim>   &grid,
+                 const RigidGrainMotion<dim> &rigid_motion,
+                 const std::vector<bool>     &field_is_rigid,
+                 const bool                   enabled);
 
     /** Whether the gaps are checked. */
     bool
@@ -84,15 +95,23 @@ namespace grainmpm
                           const unsigned int face) const;
 
   private:
-    const BackgroundGrid<dim> &grid;
-    const bool                 is_enabled;
+    const BackgroundGrid<dim>   &grid;
+    const RigidGrainMotion<dim> &rigid_motion;
+    const std::vector<bool>     &field_is_rigid;
+    const bool                   is_enabled;
 
     /**
      * Per owned slot the fraction of the node's support filled and, at
      * nodes on a box face, the centroid of its volume relative to the node
      * (for the walls); the step length.
      */
-    std::vector<double>         slot_fills;
+    std::vector<double> slot_fills;
+    /**
+     * Per owned slot of a rigid field at a node that reads the fills: the
+     * signed distance of the node from the located shape (NaN if not
+     * located).
+     */
+    std::vector<double>         slot_distances;
     std::vector<Tensor<1, dim>> slot_centroids;
     double                      dt = 0.;
   };

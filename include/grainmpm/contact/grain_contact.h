@@ -59,7 +59,9 @@ namespace grainmpm
 
     /**
      * Contact normals (dim numbers per slot) at the contact nodes of
-     * @p layout from the mass gradients @p mass_gradients; zero elsewhere.
+     * @p layout: from the shape of a rigid grain at its nodes (where
+     * RigidGrainMotion::surface_normal() knows it), from the mass gradients
+     * @p mass_gradients elsewhere; zero away from the contact nodes.
      */
     void
     compute_normals(const GrainFieldLayout<dim> &layout,

@@ -15,6 +15,8 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <deal.II/particles/particle_handler.h>
+
 #include <string>
 #include <vector>
 
@@ -89,7 +91,45 @@ namespace grainmpm
                Point<dim>                 &new_position,
                Tensor<1, dim>             &new_velocity) const;
 
+    /**
+     * Locate the rigid grains at @p time from the material points of
+     * @p particle_handler: a rigid grain that has so far only been
+     * translated (its prescribed velocity uniform over it at every time
+     * this was called, and none of its points lost) is its shape moved by
+     * the displacement of the points' mean from its GrainInfo::centroid.
+     * Collective.
+     */
+    void
+    locate(const Particles::ParticleHandler<dim> &particle_handler,
+           const double                           time);
+
+    /**
+     * The outward unit normal of the rigid grain @p grain seen from
+     * @p point (outward_normal() of its shape where locate() found it),
+     * or zero if its shape has not been located.
+     */
+    Tensor<1, dim>
+    surface_normal(const unsigned int grain, const Point<dim> &point) const;
+
+    /**
+     * The signed distance of @p point from the surface of the rigid grain
+     * @p grain (signed_distance() of its shape where locate() found it,
+     * negative inside), or NaN if its shape has not been located.
+     */
+    double
+    surface_distance(const unsigned int grain, const Point<dim> &point) const;
+
   private:
+    /**
+     * Whether the prescribed velocity of @p grain at @p time is the same at
+     * the corners of its bounding box moved by @p displacement as at its
+     * centroid (to round-off).
+     */
+    bool
+    uniform_velocity(const unsigned int    grain,
+                     const Tensor<1, dim> &displacement,
+                     const double          time) const;
+
     /**
      * The message of the InputError for the prescribed velocity of the
      * rigid grain @p grain that is not finite at @p time (at the end of a
@@ -106,6 +146,13 @@ namespace grainmpm
     const std::vector<GrainParameters<dim>> &grain_parameters;
     const BackgroundGrid<dim>               &grid;
     const bool                               has_rigid_grains;
+
+    /**
+     * Per grain: whether it is a rigid grain that has only been translated
+     * (locate()), and the displacement of its points' mean.
+     */
+    std::vector<bool>           translated;
+    std::vector<Tensor<1, dim>> displacements;
   };
 } // namespace grainmpm
 

@@ -104,6 +104,17 @@ namespace grainmpm
       return rigid_motion;
     }
 
+    /**
+     * Locate the rigid grains at @p time from the points of
+     * @p particle_handler (RigidGrainMotion::locate()). Collective.
+     */
+    void
+    locate_rigid_grains(const Particles::ParticleHandler<dim> &particle_handler,
+                        const double                           time)
+    {
+      rigid_motion.locate(particle_handler, time);
+    }
+
     /** For each field: whether it belongs to a rigid grain. */
     const std::vector<bool> &
     get_field_is_rigid() const
@@ -414,7 +425,7 @@ namespace grainmpm
     const std::vector<GrainInfo<dim>>                          &grains;
     const std::vector<std::unique_ptr<ConstitutiveModel<dim>>> &materials;
     const TransferOptions                                       options;
-    const RigidGrainMotion<dim>                                 rigid_motion;
+    RigidGrainMotion<dim>                                       rigid_motion;
     const ParticleUpdateCheck<dim>                              update_check;
 
     std::vector<unsigned int> field_of_grain;
