@@ -147,6 +147,10 @@ namespace grainmpm
         bool *quasi_static = stepper->get_quasi_static_flag();
         archive &(quasi_static != nullptr ? *quasi_static : none);
       }
+    // Where the contact locates the rigid grains, carried from step to
+    // step (an older checkpoint: located afresh from the points).
+    if (version >= 4)
+      archive & * stepper->get_rigid_grain_motion();
   }
 
 

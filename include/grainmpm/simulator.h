@@ -252,14 +252,15 @@ namespace boost::serialization
    * contact status the implicit scheme starts its next step from
    * (HeldContactStatus), 2 the length of the last step of the implicit
    * scheme's error estimate (StepErrorEstimator), 3 whether its last
-   * step was quasi-static (Quasi-static theta). Checkpoints before
+   * step was quasi-static (Quasi-static theta), 4 where the contact
+   * locates the rigid grains (RigidGrainMotion). Checkpoints before
    * version 2 hold material points with fewer properties, and
    * CheckpointManager::load() refuses them.
    */
   template <int dim>
   struct version<grainmpm::Simulator<dim>>
   {
-    using type                 = mpl::int_<3>;
+    using type                 = mpl::int_<4>;
     using tag                  = mpl::integral_c_tag;
     static constexpr int value = type::value;
   };

@@ -49,7 +49,7 @@ namespace grainmpm
     contact.prescribe_rigid_velocities(layout, state.velocities_p2g, time);
     if (normals)
       {
-        transfer.locate_rigid_grains(particle_handler, time);
+        transfer.locate_rigid_grains(particle_handler, time, dt);
         contact.compute_normals(layout, state.mass_gradients, state.normals);
       }
     else

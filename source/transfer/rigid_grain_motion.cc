@@ -140,10 +140,50 @@ namespace grainmpm
   void
   RigidGrainMotion<dim>::locate(
     const Particles::ParticleHandler<dim> &particle_handler,
-    const double                           time)
+    const double                           time,
+    const double                           dt)
   {
     if (!has_rigid_grains)
       return;
+    const double tolerance = 1e-12 * std::max(1., std::abs(time));
+    if (std::abs(time - located_time) <= tolerance)
+      {
+        // The same step again (a rejected step is retried): the points
+        // have not moved. (Before the first call the time is NaN, and
+        // neither this nor the next test holds.)
+        located_dt = dt;
+        return;
+      }
+    if (std::abs(time - (located_time + located_dt)) <= tolerance)
+      {
+        // One step on: a uniform velocity moved every point, and so their
+        // mean, by dt u(t + dt/2) (the midpoint rule of move()).
+        const double midpoint = located_time + 0.5 * located_dt;
+        for (unsigned int g = 0; g < grains.size(); ++g)
+          if (translated[g])
+            {
+              translated[g] = uniform_velocity(g, displacements[g], midpoint) &&
+                              uniform_velocity(g, displacements[g], time);
+              displacements[g] +=
+                located_dt * velocity(grains[g],
+                                      grains[g].centroid + displacements[g],
+                                      midpoint);
+            }
+      }
+    else
+      locate_from_points(particle_handler, time);
+    located_time = time;
+    located_dt   = dt;
+  }
+
+
+
+  template <int dim>
+  void
+  RigidGrainMotion<dim>::locate_from_points(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const double                           time)
+  {
     // Per grain: the sum of the points' positions, then their number.
     std::vector<double> sums(grains.size() * (dim + 1), 0.);
     for (const auto &particle : particle_handler)
@@ -171,8 +211,7 @@ namespace grainmpm
             continue;
           }
         // Rounded to 1e-10 cells: the order of the sums, which depends on
-        // the number of ranks, changes the mean in its last digits, and a
-        // node on a face would otherwise be in or out with the ranks.
+        // the number of ranks, changes the mean in its last digits.
         for (unsigned int d = 0; d < dim; ++d)
           {
             const double unit = 1e-10 * grid.cell_size()[d];

@@ -59,6 +59,13 @@ namespace grainmpm
       return state;
     }
 
+    /** Where the contact locates the rigid grains. */
+    RigidGrainMotion<dim> *
+    get_rigid_grain_motion() override
+    {
+      return &transfer.get_rigid_motion();
+    }
+
   private:
     /**
      * Contact and walls on @p velocities; returns the contact nodes. With

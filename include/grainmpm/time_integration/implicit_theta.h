@@ -111,6 +111,13 @@ namespace grainmpm
       return &last_step_quasi_static;
     }
 
+    /** Where the contact locates the rigid grains. */
+    RigidGrainMotion<dim> *
+    get_rigid_grain_motion() override
+    {
+      return &transfer.get_rigid_motion();
+    }
+
     /** The Newton-Krylov solver. */
     const NewtonKrylovSolver &
     get_solver() const

@@ -177,6 +177,16 @@ namespace grainmpm
       return nullptr;
     }
 
+    /**
+     * Where the scheme's contact locates the rigid grains
+     * (RigidGrainMotion::locate()), for checkpoints, or nullptr.
+     */
+    virtual RigidGrainMotion<dim> *
+    get_rigid_grain_motion()
+    {
+      return nullptr;
+    }
+
     /** The constraint impulses of the last step (this rank's nodes). */
     virtual const ConstraintImpulses<dim> &
     get_impulses() const

@@ -17,6 +17,9 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <boost/serialization/vector.hpp>
+
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -92,16 +95,20 @@ namespace grainmpm
                Tensor<1, dim>             &new_velocity) const;
 
     /**
-     * Locate the rigid grains at @p time from the material points of
-     * @p particle_handler: a rigid grain that has so far only been
-     * translated (its prescribed velocity uniform over it at every time
-     * this was called, and none of its points lost) is its shape moved by
-     * the displacement of the points' mean from its GrainInfo::centroid.
-     * Collective.
+     * Locate the rigid grains at @p time, the start of a step of @p dt: a
+     * rigid grain that has so far only been translated (its prescribed
+     * velocity uniform over it at every step, and, when its points were
+     * counted, none of them lost) is its shape moved by the displacement of
+     * its points' mean from its GrainInfo::centroid. The displacement is
+     * carried from one step to the next as the points move (dt u at the
+     * midpoint); the points themselves are summed at the first call and
+     * whenever @p time is neither the last call's time nor the end of its
+     * step (steps taken by another stepper). Collective.
      */
     void
     locate(const Particles::ParticleHandler<dim> &particle_handler,
-           const double                           time);
+           const double                           time,
+           const double                           dt);
 
     /**
      * The outward unit normal of the rigid grain @p grain seen from
@@ -119,7 +126,28 @@ namespace grainmpm
     double
     surface_distance(const unsigned int grain, const Point<dim> &point) const;
 
+    /**
+     * Write or read what locate() carries from step to step (for
+     * checkpoints: a resumed run then locates the grains as the run it
+     * resumes would have, to the last bit).
+     */
+    template <class Archive>
+    void
+    serialize(Archive &archive, const unsigned int /*version*/)
+    {
+      archive &translated &displacements &located_time &located_dt;
+    }
+
   private:
+    /**
+     * The displacements of the translated rigid grains from the mean of
+     * their material points in @p particle_handler at @p time (a grain
+     * that has lost points is no longer located). Collective.
+     */
+    void
+    locate_from_points(const Particles::ParticleHandler<dim> &particle_handler,
+                       const double                           time);
+
     /**
      * Whether the prescribed velocity of @p grain at @p time is the same at
      * the corners of its bounding box moved by @p displacement as at its
@@ -153,6 +181,9 @@ namespace grainmpm
      */
     std::vector<bool>           translated;
     std::vector<Tensor<1, dim>> displacements;
+    /** The time and step of the last locate() (NaN: none yet). */
+    double located_time = std::numeric_limits<double>::quiet_NaN();
+    double located_dt   = 0.;
   };
 } // namespace grainmpm
 

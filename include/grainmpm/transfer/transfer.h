@@ -104,15 +104,23 @@ namespace grainmpm
       return rigid_motion;
     }
 
+    /** The motion of the rigid grains, to write or read it (checkpoints). */
+    RigidGrainMotion<dim> &
+    get_rigid_motion()
+    {
+      return rigid_motion;
+    }
+
     /**
-     * Locate the rigid grains at @p time from the points of
-     * @p particle_handler (RigidGrainMotion::locate()). Collective.
+     * Locate the rigid grains at @p time, the start of a step of @p dt,
+     * (RigidGrainMotion::locate()). Collective.
      */
     void
     locate_rigid_grains(const Particles::ParticleHandler<dim> &particle_handler,
-                        const double                           time)
+                        const double                           time,
+                        const double                           dt)
     {
-      rigid_motion.locate(particle_handler, time);
+      rigid_motion.locate(particle_handler, time, dt);
     }
 
     /** For each field: whether it belongs to a rigid grain. */
