@@ -42,9 +42,11 @@ namespace grainmpm
         // staircase of its points wherever its faces are not aligned with
         // the grid, and a grain sliding along it would climb the steps.
         Tensor<1, dim> rigid_normal;
+        unsigned int   first_rigid = end;
         for (unsigned int s = begin; s < end; ++s)
           if (field_is_rigid[layout.field(s)])
             {
+              first_rigid = s;
               rigid_normal =
                 rigid_motion.surface_normal(layout.field(s),
                                             grid.node_position(node));
@@ -70,10 +72,12 @@ namespace grainmpm
             if (rigid_normal.norm_square() > 0.)
               {
                 const Tensor<1, dim> normal =
-                  rigid ?
+                  !rigid ?
+                    -rigid_normal :
+                  s == first_rigid ?
+                    rigid_normal :
                     rigid_motion.surface_normal(layout.field(s),
-                                                grid.node_position(node)) :
-                    -rigid_normal;
+                                                grid.node_position(node));
                 set_slot_vector<dim>(normal, normals, s);
                 continue;
               }
