@@ -38,8 +38,8 @@ namespace grainmpm
       "walls) acts only where the surfaces meet within the step. At each "
       "node the surface of every grain is located along the contact normal "
       "from the volume its material points give the node (sum_p V_p S_ip) "
-      "against the node's support, as for a flat surface; a grain that "
-      "approaches its partner by less than the gap between the surfaces in "
+      "against the node's support, as for a flat surface (a rigid grain "
+      "from its shape); a grain that approaches its partner by less than the gap between the surfaces in "
       "one step is left alone; one that approaches faster is held (the "
       "explicit scheme removes its whole approach, the implicit one lets "
       "it close the gap and no more). 'false': the classic multi-field law, "
@@ -47,6 +47,20 @@ namespace grainmpm
       "(contact about one cell early, grains rotating next to a surface "
       "are pushed off it, rolling grains slip, loose packings carry load "
       "through gaps).",
+      Patterns::Bool());
+    prm.add_parameter(
+      "Shape gap",
+      shape_gap,
+      "With the gap check: whether an elastic disk or sphere (a grain of a "
+      "material without history variable, alone in its field) is located "
+      "where it meets a wall or a rigid grain from its shape placed at its "
+      "centre of mass instead of from its material points, while its mean "
+      "strain times its radius is below a tenth of a cell and where the "
+      "shape agrees with its points within half a cell (doc/theory.md "
+      "section 5.2). The points' surface follows their lattice, which "
+      "turns with the grain: 'false' catches the side of a spinning or "
+      "rolling disk that the rotation brings down early, and a pressed "
+      "spinning disk loses spin and bounces.",
       Patterns::Bool());
     prm.add_parameter(
       "Light field fraction",

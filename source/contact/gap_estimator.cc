@@ -2,30 +2,140 @@
 // Copyright (C) 2026 by the grainmpm authors
 
 #include <grainmpm/contact/gap_estimator.h>
+#include <grainmpm/particles/grain_geometry.h>
+#include <grainmpm/particles/material_point_layout.h>
 
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace grainmpm
 {
   template <int dim>
-  GapEstimator<dim>::GapEstimator(const BackgroundGrid<dim>   &grid,
-                                  const RigidGrainMotion<dim> &rigid_motion,
-                                  const std::vector<bool>     &field_is_rigid,
-                                  const bool                   enabled)
+  GapEstimator<dim>::GapEstimator(
+    const BackgroundGrid<dim>               &grid,
+    const RigidGrainMotion<dim>             &rigid_motion,
+    const std::vector<bool>                 &field_is_rigid,
+    const std::vector<bool>                 &field_keeps_shape,
+    const std::vector<GrainInfo<dim>>       &grains,
+    const std::vector<GrainParameters<dim>> &grain_parameters,
+    const bool                               enabled,
+    const bool                               use_shapes)
     : grid(grid)
     , rigid_motion(rigid_motion)
     , field_is_rigid(field_is_rigid)
+    , field_keeps_shape(field_keeps_shape)
+    , grains(grains)
+    , grain_parameters(grain_parameters)
     , is_enabled(enabled)
+    , use_shapes(use_shapes)
   {}
 
 
 
   template <int dim>
+  std::vector<Tensor<1, dim>>
+  GapEstimator<dim>::shape_displacements(const GrainFieldLayout<dim> &layout,
+                                         const VectorType &masses) const
+  {
+    const unsigned int n_fields = field_keeps_shape.size();
+    // Per field its mass and first moment, 1 + dim numbers.
+    std::vector<double> sums(n_fields * (1 + dim), 0.);
+    for (unsigned int s = 0; s < layout.n_slots(); ++s)
+      {
+        const unsigned int field = layout.field(s);
+        if (!field_keeps_shape[field])
+          continue;
+        const double      mass     = masses.local_element(s);
+        const Point<dim> &position = grid.node_position(layout.node(s));
+        sums[field * (1 + dim)] += mass;
+        for (unsigned int d = 0; d < dim; ++d)
+          sums[field * (1 + dim) + 1 + d] += mass * position[d];
+      }
+    Utilities::MPI::sum(sums, layout.get_communicator(), sums);
+    std::vector<Tensor<1, dim>> displacements(n_fields);
+    for (unsigned int field = 0; field < n_fields; ++field)
+      if (sums[field * (1 + dim)] > 0.)
+        for (unsigned int d = 0; d < dim; ++d)
+          displacements[field][d] =
+            sums[field * (1 + dim) + 1 + d] / sums[field * (1 + dim)] -
+            grains[field].centroid[d];
+    return displacements;
+  }
+
+
+
+  template <int dim>
+  std::vector<bool>
+  GapEstimator<dim>::unstrained_shapes(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const MPI_Comm                         communicator) const
+  {
+    using Layout                = MaterialPointLayout<dim>;
+    const unsigned int n_fields = field_keeps_shape.size();
+    // Per field the mass-weighted mean of the Green strain |F^T F - I| / 2
+    // of its points: mass and sum.
+    std::vector<double> sums(2 * n_fields, 0.);
+    for (const auto &particle : particle_handler)
+      {
+        const auto         properties = particle.get_properties();
+        const unsigned int grain      = Layout::get_grain(properties);
+        if (!field_keeps_shape[grain])
+          continue;
+        Tensor<2, dim> F;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            F[i][j] = properties[Layout::deformation_gradient + i * dim + j];
+        const Tensor<2, dim> strain =
+          0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
+        const double mass = properties[Layout::mass];
+        sums[2 * grain] += mass;
+        sums[2 * grain + 1] += mass * strain.norm();
+      }
+    Utilities::MPI::sum(sums, communicator, sums);
+    double h = grid.cell_size()[0];
+    for (unsigned int d = 1; d < dim; ++d)
+      h = std::min(h, grid.cell_size()[d]);
+    std::vector<bool> unstrained(n_fields, false);
+    for (unsigned int field = 0; field < n_fields; ++field)
+      unstrained[field] =
+        field_keeps_shape[field] &&
+        sums[2 * field + 1] * grain_parameters[field].radius <=
+          0.1 * h * sums[2 * field];
+    return unstrained;
+  }
+
+
+
+  template <int dim>
+  double
+  GapEstimator<dim>::shape_distance(const unsigned int slot,
+                                    const double       fill,
+                                    const double       h_normal) const
+  {
+    const double distance = slot_shape_distances[slot];
+    if (!std::isfinite(distance))
+      return distance;
+    // The fill sees no farther than a cell: compare within that reach.
+    const double from_fill = -h_normal * HatKernel::inverse_integral(fill);
+    const double reach     = std::clamp(distance, -h_normal, h_normal);
+    return std::abs(reach - from_fill) <= 0.5 * h_normal ?
+             distance :
+             std::numeric_limits<double>::quiet_NaN();
+  }
+
+
+
+  template <int dim>
   void
-  GapEstimator<dim>::compute(const GrainFieldLayout<dim> &layout,
-                             const VectorType            &volumes,
-                             const double                 dt)
+  GapEstimator<dim>::compute(
+    const GrainFieldLayout<dim>           &layout,
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const VectorType                      &masses,
+    const VectorType                      &volumes,
+    const double                           dt)
   {
     // The support of a node, int S_i dx = prod_d h_d, halved for every box
     // face the node lies on.
@@ -37,6 +147,19 @@ namespace grainmpm
     slot_centroids.resize(layout.n_slots());
     slot_distances.assign(layout.n_slots(),
                           std::numeric_limits<double>::quiet_NaN());
+    slot_shape_distances.assign(layout.n_slots(),
+                                std::numeric_limits<double>::quiet_NaN());
+    const bool any_shape =
+      use_shapes &&
+      std::find(field_keeps_shape.begin(), field_keeps_shape.end(), true) !=
+        field_keeps_shape.end();
+    const std::vector<bool> unstrained =
+      any_shape ?
+        unstrained_shapes(particle_handler, layout.get_communicator()) :
+        std::vector<bool>(field_keeps_shape.size(), false);
+    const std::vector<Tensor<1, dim>> displacements =
+      any_shape ? shape_displacements(layout, masses) :
+                  std::vector<Tensor<1, dim>>();
     for (unsigned int s = 0; s < layout.n_slots(); ++s)
       {
         const unsigned int node  = layout.node(s);
@@ -49,10 +172,18 @@ namespace grainmpm
             slot_centroids[s] = Tensor<1, dim>();
             continue;
           }
-        if (field_is_rigid[layout.field(s)])
+        const unsigned int field = layout.field(s);
+        if (field_is_rigid[field])
           slot_distances[s] =
-            rigid_motion.surface_distance(layout.field(s),
-                                          grid.node_position(node));
+            rigid_motion.surface_distance(field, grid.node_position(node));
+        else if (unstrained[field])
+          {
+            Tensor<1, dim> normal;
+            slot_shape_distances[s] =
+              signed_distance(grain_parameters[field],
+                              grid.node_position(node) - displacements[field],
+                              normal);
+          }
         const double volume = volumes.local_element((1 + dim) * s);
         slot_fills[s] = volume * (1U << __builtin_popcount(faces)) / support;
         // Centroids only where the walls need them.
@@ -71,14 +202,26 @@ namespace grainmpm
 
 
   template <int dim>
+  double
+  GapEstimator<dim>::normal_cell_size(const Tensor<1, dim> &normal) const
+  {
+    const Tensor<1, dim> &h      = grid.cell_size();
+    double                result = 0.;
+    for (unsigned int d = 0; d < dim; ++d)
+      result += (h[d] * normal[d]) * (h[d] * normal[d]);
+    return std::sqrt(result);
+  }
+
+
+
+  template <int dim>
   void
   GapEstimator<dim>::node_allowed_approach(const unsigned int      begin,
                                            const ContactNode<dim> &node,
                                            double *allowed) const
   {
-    const Tensor<1, dim> &h               = grid.cell_size();
-    double                deformable_mass = 0., fill_sum = 0.;
-    bool                  rigid_partner = false;
+    double deformable_mass = 0., fill_sum = 0.;
+    bool   rigid_partner = false;
     // The distance of the node from the surface of the first rigid field
     // (the contact law's partner), where its shape is located.
     double rigid_distance = std::numeric_limits<double>::quiet_NaN();
@@ -99,23 +242,29 @@ namespace grainmpm
         if (node.rigid[k] || normal.norm_square() == 0. ||
             !(deformable_mass > 0.))
           continue;
-        double h_normal = 0.;
-        for (unsigned int d = 0; d < dim; ++d)
-          h_normal += (h[d] * normal[d]) * (h[d] * normal[d]);
-        // Where the surfaces of this field and of the others lie.
+        const double h_normal = normal_cell_size(normal);
+        // Where the surfaces of this field and of the others lie; against a
+        // located rigid grain, this field's from its shape where that is
+        // known and agrees with its fill.
         const double fill = slot_fills[begin + k];
-        const double gap =
-          std::isfinite(rigid_distance) ?
-            rigid_distance -
-              std::sqrt(h_normal) * HatKernel::inverse_integral(fill) :
-            std::sqrt(h_normal) *
-              (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
-               HatKernel::inverse_integral(fill));
+        double       gap  = 0.;
+        if (std::isfinite(rigid_distance))
+          {
+            const double own = shape_distance(begin + k, fill, h_normal);
+            gap              = rigid_distance +
+                  (std::isfinite(own) ?
+                     own :
+                     -h_normal * HatKernel::inverse_integral(fill));
+          }
+        else
+          gap =
+            h_normal * (HatKernel::inverse_integral(1. - (fill_sum - fill)) -
+                        HatKernel::inverse_integral(fill));
+        const double share =
+          rigid_partner ? 1. :
+                          (deformable_mass - node.masses[k]) / deformable_mass;
         if (gap > 0.)
-          allowed[k] = (rigid_partner ? 1. :
-                                        (deformable_mass - node.masses[k]) /
-                                          deformable_mass) *
-                       gap / dt;
+          allowed[k] = share * gap / dt;
       }
   }
 
@@ -134,10 +283,16 @@ namespace grainmpm
     // The centroid's distance from the face, into the box.
     const double depth =
       (face % 2 == 0 ? 1. : -1.) * slot_centroids[slot][face / 2];
-    return h *
-           std::min(HatKernel::half_surface_from_centroid(depth / h),
-                    HatKernel::inverse_half_integral(slot_fills[slot])) /
-           dt;
+    const double gap =
+      h * std::min(HatKernel::half_surface_from_centroid(depth / h),
+                   HatKernel::inverse_half_integral(slot_fills[slot]));
+    // The node lies on the wall: the gap is its distance from the shape,
+    // where that agrees with the fill.
+    const double shape = slot_shape_distances[slot];
+    if (std::isfinite(shape) &&
+        std::abs(std::clamp(shape, -h, h) - gap) <= 0.5 * h)
+      return std::max(shape, 0.) / dt;
+    return gap / dt;
   }
 
 

@@ -9,15 +9,26 @@
 namespace grainmpm
 {
   template <int dim>
-  GrainContact<dim>::GrainContact(const ContactParameters     &parameters,
-                                  const BackgroundGrid<dim>   &grid,
-                                  const RigidGrainMotion<dim> &rigid_motion,
-                                  const std::vector<bool>     &field_is_rigid)
+  GrainContact<dim>::GrainContact(
+    const ContactParameters                 &parameters,
+    const BackgroundGrid<dim>               &grid,
+    const RigidGrainMotion<dim>             &rigid_motion,
+    const std::vector<bool>                 &field_is_rigid,
+    const std::vector<bool>                 &field_keeps_shape,
+    const std::vector<GrainInfo<dim>>       &grains,
+    const std::vector<GrainParameters<dim>> &grain_parameters)
     : parameters(parameters)
     , grid(grid)
     , rigid_motion(rigid_motion)
     , field_is_rigid(field_is_rigid)
-    , gaps(grid, rigid_motion, field_is_rigid, parameters.gap_check)
+    , gaps(grid,
+           rigid_motion,
+           field_is_rigid,
+           field_keeps_shape,
+           grains,
+           grain_parameters,
+           parameters.gap_check,
+           parameters.gap_check && parameters.shape_gap)
   {}
 
 

@@ -46,7 +46,10 @@ namespace grainmpm
     , contact(parameters.contact,
               grid,
               transfer.get_rigid_motion(),
-              transfer.get_field_is_rigid())
+              transfer.get_field_is_rigid(),
+              transfer.get_field_keeps_shape(),
+              grains,
+              parameters.grains)
   {}
 
 

@@ -56,7 +56,10 @@ namespace grainmpm
     , contact(parameters.contact,
               grid,
               transfer.get_rigid_motion(),
-              transfer.get_field_is_rigid())
+              transfer.get_field_is_rigid(),
+              transfer.get_field_keeps_shape(),
+              grains,
+              parameters.grains)
     , nominal_step_at_rest(
         nominal_time_step(parameters.time_stepping,
                           grid.minimum_cell_size(),

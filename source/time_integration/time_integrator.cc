@@ -55,7 +55,8 @@ namespace grainmpm
     else
       layout.reinit_vector(state.normals, dim);
     if (contact.uses_gaps())
-      contact.compute_gaps(layout, state.volumes, dt);
+      contact.compute_gaps(
+        layout, particle_handler, state.masses, state.volumes, dt);
   }
 
 

@@ -71,6 +71,7 @@ namespace grainmpm
     , update_check(parameters, grid, this->options)
     , field_of_grain(grains.size())
     , field_is_rigid(grains.size(), false)
+    , field_keeps_shape(grains.size(), false)
   {
     int shared_field = -1;
     for (unsigned int g = 0; g < grains.size(); ++g)
@@ -86,6 +87,18 @@ namespace grainmpm
         several_fields =
           several_fields || field_of_grain[g] != field_of_grain[0];
       }
+    for (unsigned int g = 0; g < grains.size(); ++g)
+      {
+        const GrainShape shape = parameters.grains[g].shape;
+        field_keeps_shape[g] =
+          !grains[g].rigid && field_of_grain[g] == g &&
+          (shape == GrainShape::disk || shape == GrainShape::sphere) &&
+          !materials[grains[g].material]->has_history();
+      }
+    // A field shared with another grain holds no single shape.
+    for (unsigned int g = 0; g < grains.size(); ++g)
+      if (field_of_grain[g] != g)
+        field_keeps_shape[field_of_grain[g]] = false;
   }
 
 

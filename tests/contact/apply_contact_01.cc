@@ -110,6 +110,7 @@ test()
   const std::vector<GrainInfo<dim>>       grains(rigid.size());
   const std::vector<GrainParameters<dim>> grain_parameters(rigid.size());
   const RigidGrainMotion<dim> rigid_motion(grains, grain_parameters, grid);
+  const std::vector<bool>     keeps_shape(rigid.size(), false);
   for (const auto model :
        {ContactModel::frictionless, ContactModel::coulomb_friction})
     {
@@ -120,7 +121,13 @@ test()
       deallog << (model == ContactModel::frictionless ? "frictionless" :
                                                         "Coulomb friction")
               << std::endl;
-      GrainContact<dim> contact(contact_parameters, grid, rigid_motion, rigid);
+      GrainContact<dim> contact(contact_parameters,
+                                grid,
+                                rigid_motion,
+                                rigid,
+                                keeps_shape,
+                                grains,
+                                grain_parameters);
       VectorType        normals;
       contact.compute_normals(layout, mass_gradients, normals);
 
@@ -174,7 +181,13 @@ test()
   // Walls.
   ContactParameters contact_parameters;
   contact_parameters.gap_check = false;
-  GrainContact<dim> contact(contact_parameters, grid, rigid_motion, rigid);
+  GrainContact<dim> contact(contact_parameters,
+                            grid,
+                            rigid_motion,
+                            rigid,
+                            keeps_shape,
+                            grains,
+                            grain_parameters);
   VectorType        walled = velocities;
   contact.apply_walls(layout, walled);
   unsigned int n_into_wall = 0, n_no_slip_moving = 0, n_changed_elsewhere = 0,

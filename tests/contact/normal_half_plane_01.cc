@@ -123,8 +123,15 @@ test()
   const std::vector<GrainInfo<dim>>       grains(rigid.size());
   const std::vector<GrainParameters<dim>> grain_parameters(rigid.size());
   const RigidGrainMotion<dim> rigid_motion(grains, grain_parameters, grid);
-  GrainContact<dim> contact(contact_parameters, grid, rigid_motion, rigid);
-  VectorType        normals;
+  const std::vector<bool>     keeps_shape(rigid.size(), false);
+  GrainContact<dim>           contact(contact_parameters,
+                            grid,
+                            rigid_motion,
+                            rigid,
+                            keeps_shape,
+                            grains,
+                            grain_parameters);
+  VectorType                  normals;
   contact.compute_normals(layout, mass_gradients, normals);
 
   double max_sum = 0., max_length_error = 0., min_nx_interior = 2.,

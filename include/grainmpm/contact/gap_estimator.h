@@ -7,11 +7,15 @@
 #include <grainmpm/base/config.h>
 #include <grainmpm/contact/contact_law.h>
 #include <grainmpm/grid/background_grid.h>
+#include <grainmpm/particles/grain_generator.h>
+#include <grainmpm/particles/grain_parameters.h>
 #include <grainmpm/transfer/grain_field_layout.h>
 #include <grainmpm/transfer/rigid_grain_motion.h>
 #include <grainmpm/transfer/shape_functions.h>
 
 #include <deal.II/lac/la_parallel_vector.h>
+
+#include <deal.II/particles/particle_handler.h>
 
 #include <vector>
 
@@ -44,6 +48,20 @@ namespace grainmpm
    * A rigid grain whose shape RigidGrainMotion has located is not read from
    * its fill fraction: its surface lies at the signed distance d of the
    * node from its shape, gap = d - h_n Phi^{-1}(phi_g).
+   *
+   * With `Contact/Shape gap` (@p use_shapes), a grain that keeps its
+   * shape (Transfer::get_field_keeps_shape(): an elastic disk or sphere
+   * alone in its field) is read from its shape where it meets a located
+   * rigid grain or a wall: its surface lies at the signed distance e of the
+   * node from the shape placed at the grain's centre of mass (from the slot
+   * masses), gap = d + e (at a wall on the box face, gap = e). The lattice
+   * of its points turns with the grain, and its fill fractions move the
+   * surface by a part of a cell from node to node as a rolling or spinning
+   * grain turns; the shape does not. The shape is used while the grain is
+   * strained little (the mass-weighted mean of its Green strain times its
+   * radius at most a tenth of the cell size) and only where it agrees with
+   * the fill within half a cell along the normal; elsewhere, and between
+   * two deformable grains, the fills are read.
    */
   template <int dim>
   class GapEstimator
@@ -53,13 +71,19 @@ namespace grainmpm
 
     /**
      * The gaps on @p grid, with the rigid grains (@p field_is_rigid per
-     * field) where @p rigid_motion locates them; all allowed approaches
-     * are 0 unless @p enabled.
+     * field) where @p rigid_motion locates them, and with @p use_shapes the
+     * fields that @p field_keeps_shape from the shapes of @p grain_parameters
+     * (@p grains for their centroids); all allowed approaches are 0 unless
+     * @p enabled.
      */
-    GapEstimator(const BackgroundGrid<dim>   &grid,
-                 const RigidGrainMotion<dim> &rigid_motion,
-                 const std::vector<bool>     &field_is_rigid,
-                 const bool                   enabled);
+    GapEstimator(const BackgroundGrid<dim>               &grid,
+                 const RigidGrainMotion<dim>             &rigid_motion,
+                 const std::vector<bool>                 &field_is_rigid,
+                 const std::vector<bool>                 &field_keeps_shape,
+                 const std::vector<GrainInfo<dim>>       &grains,
+                 const std::vector<GrainParameters<dim>> &grain_parameters,
+                 const bool                               enabled,
+                 const bool                               use_shapes);
 
     /** Whether the gaps are checked. */
     bool
@@ -71,13 +95,17 @@ namespace grainmpm
     /**
      * The fill fractions and centroids of the owned slots of @p layout from
      * @p volumes (per slot sum_p V_p S_ip and its first moment,
-     * Transfer::particles_to_grid()), for a step of length @p dt: the data
-     * of the allowed approaches until the next call.
+     * Transfer::particles_to_grid()), and the distances from the shapes of
+     * the grains that keep theirs, placed at their centres of mass from
+     * @p masses (one per slot), for a step of length @p dt: the data of the
+     * allowed approaches until the next call. Collective.
      */
     void
-    compute(const GrainFieldLayout<dim> &layout,
-            const VectorType            &volumes,
-            const double                 dt);
+    compute(const GrainFieldLayout<dim>           &layout,
+            const Particles::ParticleHandler<dim> &particle_handler,
+            const VectorType                      &masses,
+            const VectorType                      &volumes,
+            const double                           dt);
 
     /**
      * The approach speeds the gaps allow the fields of the contact node
@@ -95,10 +123,47 @@ namespace grainmpm
                           const unsigned int face) const;
 
   private:
-    const BackgroundGrid<dim>   &grid;
-    const RigidGrainMotion<dim> &rigid_motion;
-    const std::vector<bool>     &field_is_rigid;
-    const bool                   is_enabled;
+    /**
+     * Per field that keeps its shape, the displacement of its centre of
+     * mass (from the owned slots of @p layout, summed over the ranks) from
+     * its GrainInfo::centroid; zero for the others.
+     */
+    std::vector<Tensor<1, dim>>
+    shape_displacements(const GrainFieldLayout<dim> &layout,
+                        const VectorType            &masses) const;
+
+    /**
+     * Per field whether it keeps its shape and is strained little enough
+     * for the shape to place its surface: the mass-weighted mean of the
+     * Green strain |F^T F - I| / 2 of its points in @p particle_handler
+     * times its radius is at most a tenth of the cell size. Collective.
+     */
+    std::vector<bool>
+    unstrained_shapes(const Particles::ParticleHandler<dim> &particle_handler,
+                      const MPI_Comm communicator) const;
+
+    /**
+     * The signed distance e of slot @p slot's node from its field's shape
+     * if the fill fraction @p fill puts the surface within half a cell of
+     * it along @p normal (cell size @p h_normal there), else NaN.
+     */
+    double
+    shape_distance(const unsigned int slot,
+                   const double       fill,
+                   const double       h_normal) const;
+
+    /** The cell size along the unit vector @p normal. */
+    double
+    normal_cell_size(const Tensor<1, dim> &normal) const;
+
+    const BackgroundGrid<dim>               &grid;
+    const RigidGrainMotion<dim>             &rigid_motion;
+    const std::vector<bool>                 &field_is_rigid;
+    const std::vector<bool>                 &field_keeps_shape;
+    const std::vector<GrainInfo<dim>>       &grains;
+    const std::vector<GrainParameters<dim>> &grain_parameters;
+    const bool                               is_enabled;
+    const bool                               use_shapes;
 
     /**
      * Per owned slot the fraction of the node's support filled and, at
@@ -111,7 +176,13 @@ namespace grainmpm
      * signed distance of the node from the located shape (NaN if not
      * located).
      */
-    std::vector<double>         slot_distances;
+    std::vector<double> slot_distances;
+    /**
+     * Per owned slot of a field that keeps its shape, at a node that reads
+     * the fills: the signed distance of the node from the shape at the
+     * grain's centre of mass (NaN elsewhere).
+     */
+    std::vector<double>         slot_shape_distances;
     std::vector<Tensor<1, dim>> slot_centroids;
     double                      dt = 0.;
   };

@@ -40,7 +40,9 @@ namespace grainmpm
    * normals.
    *
    * With `Contact/Gap check`, a field may approach its partner by the gap
-   * between their surfaces in one step (GapEstimator).
+   * between their surfaces in one step (GapEstimator); @p field_keeps_shape
+   * (Transfer::get_field_keeps_shape()) says which fields it may read from
+   * the shapes of their grains.
    */
   template <int dim>
   class GrainContact
@@ -52,10 +54,13 @@ namespace grainmpm
      * @p field_is_rigid says for each field whether it belongs to a rigid
      * grain; rigid grains move as @p rigid_motion says.
      */
-    GrainContact(const ContactParameters     &parameters,
-                 const BackgroundGrid<dim>   &grid,
-                 const RigidGrainMotion<dim> &rigid_motion,
-                 const std::vector<bool>     &field_is_rigid);
+    GrainContact(const ContactParameters                 &parameters,
+                 const BackgroundGrid<dim>               &grid,
+                 const RigidGrainMotion<dim>             &rigid_motion,
+                 const std::vector<bool>                 &field_is_rigid,
+                 const std::vector<bool>                 &field_keeps_shape,
+                 const std::vector<GrainInfo<dim>>       &grains,
+                 const std::vector<GrainParameters<dim>> &grain_parameters);
 
     /**
      * Contact normals (dim numbers per slot) at the contact nodes of
@@ -77,16 +82,20 @@ namespace grainmpm
 
     /**
      * The fill fractions and centroids of the owned slots of @p layout from
-     * the slot volumes and their moments @p volumes, for a step of length
-     * @p dt: the data of the gap check until the next call
-     * (GapEstimator::compute()).
+     * the slot volumes and their moments @p volumes, and the shapes of the
+     * grains that keep theirs at their centres of mass from @p masses, for
+     * a step of length @p dt, those strained little enough according to
+     * the points in @p particle_handler: the data of the gap check until
+     * the next call (GapEstimator::compute()). Collective.
      */
     void
-    compute_gaps(const GrainFieldLayout<dim> &layout,
-                 const VectorType            &volumes,
-                 const double                 dt)
+    compute_gaps(const GrainFieldLayout<dim>           &layout,
+                 const Particles::ParticleHandler<dim> &particle_handler,
+                 const VectorType                      &masses,
+                 const VectorType                      &volumes,
+                 const double                           dt)
     {
-      gaps.compute(layout, volumes, dt);
+      gaps.compute(layout, particle_handler, masses, volumes, dt);
     }
 
     /**

@@ -131,6 +131,18 @@ namespace grainmpm
     }
 
     /**
+     * For each field: whether it holds one deformable disk or sphere of an
+     * elastic material (no history variable), which keeps its shape to a
+     * small strain, so that its surface is its shape placed at its centre of
+     * mass (GapEstimator).
+     */
+    const std::vector<bool> &
+    get_field_keeps_shape() const
+    {
+      return field_keeps_shape;
+    }
+
+    /**
      * Whether the grains have more than one velocity field (contact, or a
      * rigid grain): only then are there nodes with several fields, where
      * contact needs normals.
@@ -438,6 +450,7 @@ namespace grainmpm
 
     std::vector<unsigned int> field_of_grain;
     std::vector<bool>         field_is_rigid;
+    std::vector<bool>         field_keeps_shape;
     bool                      several_fields = false;
     TransferCache<dim>        cache;
     GrainFieldLayout<dim>     layout;
