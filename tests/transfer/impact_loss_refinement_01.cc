@@ -11,8 +11,10 @@
 // grid-scale noise of points crossing cell faces, and the vibration the
 // impact leaves in the grain. With linear hats the loss grows under
 // refinement; with uGIMP it falls. Both with the default blended mass
-// matrix and the default gap check (13.1 / 18.1 / 19.2 % and 11.5 / 4.0 /
-// 2.4 %; with Gap check = false 5.1 / 9.5 / 21.0 % and 2.5 / 1.0 / 0.9 %,
+// matrix and the default gap check, which reads the disk from its shape
+// (9.2 / 18.1 / 17.8 % and 6.2 / 3.8 / 2.2 %; with Shape gap = false, from
+// its fills, 13.5 / 17.1 / 19.2 % and 11.8 / 4.0 / 2.4 %; with Gap check =
+// false 5.1 / 9.5 / 21.0 % and 2.5 / 1.0 / 0.9 %,
 // and with the lumped mass as well 7.8 / 9.5 / 15.2 % and 5.5 / 2.6 /
 // 1.7 %).
 

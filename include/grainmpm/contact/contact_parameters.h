@@ -31,7 +31,7 @@ namespace grainmpm
     ContactModel model                = ContactModel::frictionless;
     double       friction_coefficient = 0.;
     bool         gap_check            = true;
-    bool         shape_gap            = false;
+    bool         shape_gap            = true;
     double       light_field_fraction = 1e-3;
 
     void
