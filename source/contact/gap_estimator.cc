@@ -3,7 +3,6 @@
 
 #include <grainmpm/contact/gap_estimator.h>
 #include <grainmpm/particles/grain_geometry.h>
-#include <grainmpm/particles/material_point_layout.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -69,31 +68,11 @@ namespace grainmpm
 
   template <int dim>
   std::vector<bool>
-  GapEstimator<dim>::unstrained_shapes(
-    const Particles::ParticleHandler<dim> &particle_handler,
-    const MPI_Comm                         communicator) const
+  GapEstimator<dim>::unstrained_shapes(std::vector<double> sums,
+                                       const MPI_Comm      communicator) const
   {
-    using Layout                = MaterialPointLayout<dim>;
     const unsigned int n_fields = field_keeps_shape.size();
-    // Per field the mass-weighted mean of the Green strain |F^T F - I| / 2
-    // of its points: mass and sum.
-    std::vector<double> sums(2 * n_fields, 0.);
-    for (const auto &particle : particle_handler)
-      {
-        const auto         properties = particle.get_properties();
-        const unsigned int grain      = Layout::get_grain(properties);
-        if (!field_keeps_shape[grain])
-          continue;
-        Tensor<2, dim> F;
-        for (unsigned int i = 0; i < dim; ++i)
-          for (unsigned int j = 0; j < dim; ++j)
-            F[i][j] = properties[Layout::deformation_gradient + i * dim + j];
-        const Tensor<2, dim> strain =
-          0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
-        const double mass = properties[Layout::mass];
-        sums[2 * grain] += mass;
-        sums[2 * grain + 1] += mass * strain.norm();
-      }
+    AssertDimension(sums.size(), 2 * n_fields);
     Utilities::MPI::sum(sums, communicator, sums);
     double h = grid.cell_size()[0];
     for (unsigned int d = 1; d < dim; ++d)
@@ -130,12 +109,11 @@ namespace grainmpm
 
   template <int dim>
   void
-  GapEstimator<dim>::compute(
-    const GrainFieldLayout<dim>           &layout,
-    const Particles::ParticleHandler<dim> &particle_handler,
-    const VectorType                      &masses,
-    const VectorType                      &volumes,
-    const double                           dt)
+  GapEstimator<dim>::compute(const GrainFieldLayout<dim> &layout,
+                             const std::vector<double>   &strain_sums,
+                             const VectorType            &masses,
+                             const VectorType            &volumes,
+                             const double                 dt)
   {
     // The support of a node, int S_i dx = prod_d h_d, halved for every box
     // face the node lies on.
@@ -154,9 +132,8 @@ namespace grainmpm
       std::find(field_keeps_shape.begin(), field_keeps_shape.end(), true) !=
         field_keeps_shape.end();
     const std::vector<bool> unstrained =
-      any_shape ?
-        unstrained_shapes(particle_handler, layout.get_communicator()) :
-        std::vector<bool>(field_keeps_shape.size(), false);
+      any_shape ? unstrained_shapes(strain_sums, layout.get_communicator()) :
+                  std::vector<bool>(field_keeps_shape.size(), false);
     const std::vector<Tensor<1, dim>> displacements =
       any_shape ? shape_displacements(layout, masses) :
                   std::vector<Tensor<1, dim>>();

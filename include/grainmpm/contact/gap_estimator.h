@@ -97,15 +97,16 @@ namespace grainmpm
      * @p volumes (per slot sum_p V_p S_ip and its first moment,
      * Transfer::particles_to_grid()), and the distances from the shapes of
      * the grains that keep theirs, placed at their centres of mass from
-     * @p masses (one per slot), for a step of length @p dt: the data of the
-     * allowed approaches until the next call. Collective.
+     * @p masses (one per slot), if strained little enough according to
+     * @p strain_sums (unstrained_shapes()), for a step of length @p dt: the
+     * data of the allowed approaches until the next call. Collective.
      */
     void
-    compute(const GrainFieldLayout<dim>           &layout,
-            const Particles::ParticleHandler<dim> &particle_handler,
-            const VectorType                      &masses,
-            const VectorType                      &volumes,
-            const double                           dt);
+    compute(const GrainFieldLayout<dim> &layout,
+            const std::vector<double>   &strain_sums,
+            const VectorType            &masses,
+            const VectorType            &volumes,
+            const double                 dt);
 
     /**
      * The approach speeds the gaps allow the fields of the contact node
@@ -135,12 +136,14 @@ namespace grainmpm
     /**
      * Per field whether it keeps its shape and is strained little enough
      * for the shape to place its surface: the mass-weighted mean of the
-     * Green strain |F^T F - I| / 2 of its points in @p particle_handler
-     * times its radius is at most a tenth of the cell size. Collective.
+     * Green strain |F^T F - I| / 2 of its points times its radius is at
+     * most a tenth of the cell size. @p strain_sums holds this process's
+     * mass and mass-weighted strain per field
+     * (Transfer::particles_to_grid()). Collective.
      */
     std::vector<bool>
-    unstrained_shapes(const Particles::ParticleHandler<dim> &particle_handler,
-                      const MPI_Comm communicator) const;
+    unstrained_shapes(std::vector<double> strain_sums,
+                      const MPI_Comm      communicator) const;
 
     /**
      * The signed distance e of slot @p slot's node from its field's shape

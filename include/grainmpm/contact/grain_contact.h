@@ -85,17 +85,18 @@ namespace grainmpm
      * the slot volumes and their moments @p volumes, and the shapes of the
      * grains that keep theirs at their centres of mass from @p masses, for
      * a step of length @p dt, those strained little enough according to
-     * the points in @p particle_handler: the data of the gap check until
-     * the next call (GapEstimator::compute()). Collective.
+     * their points' strains @p strain_sums (Transfer::particles_to_grid()):
+     * the data of the gap check until the next call
+     * (GapEstimator::compute()). Collective.
      */
     void
-    compute_gaps(const GrainFieldLayout<dim>           &layout,
-                 const Particles::ParticleHandler<dim> &particle_handler,
-                 const VectorType                      &masses,
-                 const VectorType                      &volumes,
-                 const double                           dt)
+    compute_gaps(const GrainFieldLayout<dim> &layout,
+                 const std::vector<double>   &strain_sums,
+                 const VectorType            &masses,
+                 const VectorType            &volumes,
+                 const double                 dt)
     {
-      gaps.compute(layout, particle_handler, masses, volumes, dt);
+      gaps.compute(layout, strain_sums, masses, volumes, dt);
     }
 
     /**

@@ -54,9 +54,15 @@ namespace grainmpm
      * contact).
      */
     VectorType volumes;
-    VectorType momenta;
-    VectorType mass_gradients;
-    VectorType normals;
+    /**
+     * With the volumes: per field that keeps its shape, the mass and the
+     * mass-weighted strain of its points on this process
+     * (Transfer::particles_to_grid()).
+     */
+    std::vector<double> strain_sums;
+    VectorType          momenta;
+    VectorType          mass_gradients;
+    VectorType          normals;
     /** v^n from particle to grid (uncorrected): the FLIP reference. */
     VectorType velocities_p2g;
     /** The grid velocity at the end of the step. */

@@ -176,14 +176,19 @@ namespace grainmpm
      * The volumes have 1 + dim components per slot: the volume
      * sum_p V_p S_ip and its first moment sum_p V_p (S_ip x_p +
      * l^2 / 3 grad S_ip) (l the half-width of a point's box: the moment of
-     * the box under the hat).
+     * the box under the hat). With the volumes, if given, @p strain_sums
+     * gets two entries per field: for a field that keeps its shape
+     * (get_field_keeps_shape()) the mass sum_p m_p and the mass-weighted
+     * Green strain sum_p m_p |F_p^T F_p - I| / 2 of its owned points, zero
+     * for the others (not summed over the processes).
      */
     void
     particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
                       VectorType                            *masses,
                       VectorType                            &momenta,
                       VectorType                            *mass_gradients,
-                      VectorType *volumes = nullptr) const;
+                      VectorType                            *volumes = nullptr,
+                      std::vector<double> *strain_sums = nullptr) const;
 
     /** v = p / m on owned slots with mass, zero elsewhere. */
     void
