@@ -391,17 +391,21 @@ namespace grainmpm
   ContactLaw<dim>::apply_wall(const BoundaryCondition &condition,
                               const Tensor<1, dim>    &normal,
                               Tensor<1, dim>          &velocity,
-                              const double             allowed)
+                              const double             allowed,
+                              const double             turning)
   {
-    Tensor<1, dim>     slip_direction;
-    const ContactState state =
-      classify_wall(condition, normal, velocity, slip_direction, allowed);
+    const Tensor<1, dim> shift    = wall_turning(condition, turning) * normal;
+    Tensor<1, dim>       relative = velocity - shift;
+    Tensor<1, dim>       slip_direction;
+    const ContactState   state =
+      classify_wall(condition, normal, relative, slip_direction, allowed);
     apply_state(state,
                 normal,
                 wall_friction(condition),
                 slip_direction,
                 Tensor<1, dim>(),
-                velocity);
+                relative);
+    velocity = relative + shift;
   }
 
 

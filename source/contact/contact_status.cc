@@ -177,10 +177,14 @@ namespace grainmpm
         Tensor<1, dim> velocity = get_slot_vector<dim>(projected, s);
         const double   allowed =
           contact.get_gaps().wall_allowed_approach(s, wall_faces[w]);
+        // The wall constrains the normal velocity beyond the part it leaves
+        // to the field (GapEstimator::wall_turning_speed()).
+        const double turning = ContactLaw<dim>::wall_turning(
+          condition, contact.get_gaps().wall_turning_speed(s, wall_faces[w]));
         wall_state[w] =
           ContactLaw<dim>::classify_wall(condition,
                                          normal,
-                                         velocity,
+                                         velocity - turning * normal,
                                          wall_slip_directions[w],
                                          allowed,
                                          hysteresis ? previous.wall_state[w] :
@@ -194,8 +198,12 @@ namespace grainmpm
                  wall_state[w],
                  wall_slip_directions[w],
                  wall_changes[w]);
-        wall_kept[w] = ContactLaw<dim>::wall_kept_approach(
-          condition, wall_state[w], allowed, keep_allowed_approach);
+        wall_kept[w] =
+          ContactLaw<dim>::wall_kept_approach(condition,
+                                              wall_state[w],
+                                              allowed,
+                                              keep_allowed_approach) +
+          (wall_state[w] != ContactState::free ? turning : 0.);
         ContactLaw<dim>::apply_state(wall_state[w],
                                      normal,
                                      ContactLaw<dim>::wall_friction(condition),

@@ -3,6 +3,7 @@
 
 #include <grainmpm/contact/gap_estimator.h>
 #include <grainmpm/particles/grain_geometry.h>
+#include <grainmpm/transfer/transfer.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -68,21 +69,64 @@ namespace grainmpm
 
   template <int dim>
   std::vector<bool>
-  GapEstimator<dim>::unstrained_shapes(std::vector<double> sums,
-                                       const MPI_Comm      communicator) const
+  GapEstimator<dim>::move_shapes(std::vector<double> sums,
+                                 const MPI_Comm      communicator)
   {
-    const unsigned int n_fields = field_keeps_shape.size();
-    AssertDimension(sums.size(), 2 * n_fields);
+    constexpr unsigned int n_sums   = Transfer<dim>::n_shape_sums;
+    const unsigned int     n_fields = field_keeps_shape.size();
+    AssertDimension(sums.size(), n_sums * n_fields);
     Utilities::MPI::sum(sums, communicator, sums);
     double h = grid.cell_size()[0];
     for (unsigned int d = 1; d < dim; ++d)
       h = std::min(h, grid.cell_size()[d]);
     std::vector<bool> unstrained(n_fields, false);
+    shape_centres.assign(n_fields, Point<dim>());
+    shape_angular_velocities.assign(n_fields, Tensor<1, 3>());
     for (unsigned int field = 0; field < n_fields; ++field)
-      unstrained[field] =
-        field_keeps_shape[field] &&
-        sums[2 * field + 1] * grain_parameters[field].radius <=
-          0.1 * h * sums[2 * field];
+      {
+        const double *const q    = sums.data() + n_sums * field;
+        const double        mass = q[0];
+        if (!field_keeps_shape[field] || !(mass > 0.))
+          continue;
+        // The mean strain |E| times the radius against a tenth of a cell.
+        unstrained[field] =
+          q[1] * grain_parameters[field].radius <= 0.1 * h * mass;
+        // About the centre of mass c: L_c = L - c x P and the second
+        // moment J_c = J - M c (x) c; the inertia tr(J_c) I - J_c.
+        const double *const first_moment = q + 2;
+        const double *const momentum     = first_moment + dim;
+        const double *const angular      = momentum + dim;
+        const double *const second       = angular + (dim == 2 ? 1 : 3);
+        Point<dim>          c;
+        for (unsigned int d = 0; d < dim; ++d)
+          c[d] = first_moment[d] / mass;
+        shape_centres[field] = c;
+        Tensor<2, dim> J;
+        for (unsigned int d = 0; d < dim; ++d)
+          for (unsigned int e = 0; e < dim; ++e)
+            J[d][e] = second[d * dim + e] - mass * c[d] * c[e];
+        if constexpr (dim == 2)
+          {
+            const double L =
+              angular[0] - (c[0] * momentum[1] - c[1] * momentum[0]);
+            const double inertia = trace(J);
+            if (inertia > 0.)
+              shape_angular_velocities[field][2] = L / inertia;
+          }
+        else
+          {
+            Tensor<1, 3> L;
+            for (unsigned int a = 0; a < 3; ++a)
+              L[a] = angular[a] - (c[(a + 1) % 3] * momentum[(a + 2) % 3] -
+                                   c[(a + 2) % 3] * momentum[(a + 1) % 3]);
+            Tensor<2, 3> inertia;
+            for (unsigned int d = 0; d < 3; ++d)
+              for (unsigned int e = 0; e < 3; ++e)
+                inertia[d][e] = (d == e ? trace(J) : 0.) - J[d][e];
+            if (determinant(inertia) > 0.)
+              shape_angular_velocities[field] = invert(inertia) * L;
+          }
+      }
     return unstrained;
   }
 
@@ -110,7 +154,7 @@ namespace grainmpm
   template <int dim>
   void
   GapEstimator<dim>::compute(const GrainFieldLayout<dim> &layout,
-                             const std::vector<double>   &strain_sums,
+                             const std::vector<double>   &shape_sums,
                              const VectorType            &masses,
                              const VectorType            &volumes,
                              const double                 dt)
@@ -131,8 +175,9 @@ namespace grainmpm
       use_shapes &&
       std::find(field_keeps_shape.begin(), field_keeps_shape.end(), true) !=
         field_keeps_shape.end();
+    slot_turning_velocities.assign(layout.n_slots(), Tensor<1, dim>());
     const std::vector<bool> unstrained =
-      any_shape ? unstrained_shapes(strain_sums, layout.get_communicator()) :
+      any_shape ? move_shapes(shape_sums, layout.get_communicator()) :
                   std::vector<bool>(field_keeps_shape.size(), false);
     const std::vector<Tensor<1, dim>> displacements =
       any_shape ? shape_displacements(layout, masses) :
@@ -172,6 +217,22 @@ namespace grainmpm
               slot_centroids[s][d] =
                 volumes.local_element((1 + dim) * s + 1 + d) / volume -
                 position[d];
+            // The rotation of the shape about its centre at the centroid of
+            // the node's material (omega x r).
+            if (std::isfinite(slot_shape_distances[s]))
+              {
+                const Tensor<1, dim> r =
+                  position + slot_centroids[s] - shape_centres[field];
+                const Tensor<1, 3> &omega = shape_angular_velocities[field];
+                if constexpr (dim == 2)
+                  slot_turning_velocities[s] =
+                    Tensor<1, dim>({-omega[2] * r[1], omega[2] * r[0]});
+                else
+                  for (unsigned int a = 0; a < 3; ++a)
+                    slot_turning_velocities[s][a] =
+                      omega[(a + 1) % 3] * r[(a + 2) % 3] -
+                      omega[(a + 2) % 3] * r[(a + 1) % 3];
+              }
           }
       }
   }
@@ -248,28 +309,54 @@ namespace grainmpm
 
 
   template <int dim>
+  bool
+  GapEstimator<dim>::wall_reads_shape(const unsigned int slot,
+                                      const unsigned int face,
+                                      double            &gap) const
+  {
+    const double h = grid.cell_size()[face / 2];
+    // The centroid's distance from the face, into the box.
+    const double depth =
+      (face % 2 == 0 ? 1. : -1.) * slot_centroids[slot][face / 2];
+    gap = h * std::min(HatKernel::half_surface_from_centroid(depth / h),
+                       HatKernel::inverse_half_integral(slot_fills[slot]));
+    // The node lies on the wall: the gap is its distance from the shape,
+    // where that agrees with the fill.
+    const double shape = slot_shape_distances[slot];
+    return std::isfinite(shape) &&
+           std::abs(std::clamp(shape, -h, h) - gap) <= 0.5 * h;
+  }
+
+
+
+  template <int dim>
   double
   GapEstimator<dim>::wall_allowed_approach(const unsigned int slot,
                                            const unsigned int face) const
   {
     if (!is_enabled)
       return 0.;
-    const double h = grid.cell_size()[face / 2];
     if (!(slot_fills[slot] > 0.))
-      return h / dt;
-    // The centroid's distance from the face, into the box.
-    const double depth =
-      (face % 2 == 0 ? 1. : -1.) * slot_centroids[slot][face / 2];
-    const double gap =
-      h * std::min(HatKernel::half_surface_from_centroid(depth / h),
-                   HatKernel::inverse_half_integral(slot_fills[slot]));
-    // The node lies on the wall: the gap is its distance from the shape,
-    // where that agrees with the fill.
-    const double shape = slot_shape_distances[slot];
-    if (std::isfinite(shape) &&
-        std::abs(std::clamp(shape, -h, h) - gap) <= 0.5 * h)
-      return std::max(shape, 0.) / dt;
+      return grid.cell_size()[face / 2] / dt;
+    double gap = 0.;
+    if (wall_reads_shape(slot, face, gap))
+      return std::max(slot_shape_distances[slot], 0.) / dt;
     return gap / dt;
+  }
+
+
+
+  template <int dim>
+  double
+  GapEstimator<dim>::wall_turning_speed(const unsigned int slot,
+                                        const unsigned int face) const
+  {
+    double gap = 0.;
+    if (!is_enabled || !(slot_fills[slot] > 0.) ||
+        !wall_reads_shape(slot, face, gap))
+      return 0.;
+    // Along the outward normal of the face.
+    return (face % 2 == 0 ? -1. : 1.) * slot_turning_velocities[slot][face / 2];
   }
 
 

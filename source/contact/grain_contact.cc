@@ -255,7 +255,8 @@ namespace grainmpm
                     grid.boundary_condition(face),
                     ContactLaw<dim>::face_normal(face),
                     velocity,
-                    gaps.wall_allowed_approach(s, face));
+                    gaps.wall_allowed_approach(s, face),
+                    gaps.wall_turning_speed(s, face));
                   if (impulses != nullptr)
                     impulses->add_wall(face,
                                        masses->local_element(s),

@@ -43,7 +43,7 @@ namespace grainmpm
                                state.momenta,
                                normals ? &state.mass_gradients : nullptr,
                                contact.uses_gaps() ? &state.volumes : nullptr,
-                               &state.strain_sums);
+                               &state.shape_sums);
     transfer.velocities_from_momenta(state.masses,
                                      state.momenta,
                                      state.velocities_p2g);
@@ -57,7 +57,7 @@ namespace grainmpm
       layout.reinit_vector(state.normals, dim);
     if (contact.uses_gaps())
       contact.compute_gaps(
-        layout, state.strain_sums, state.masses, state.volumes, dt);
+        layout, state.shape_sums, state.masses, state.volumes, dt);
   }
 
 

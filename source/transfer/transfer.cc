@@ -52,6 +52,45 @@ namespace grainmpm
 
 
 
+    /**
+     * Add the point with @p properties at @p x to the shape sums @p sums of
+     * its field (Transfer::particles_to_grid()).
+     */
+    template <int dim>
+    void
+    add_shape_sums(const ArrayView<const double> &properties,
+                   const Point<dim>              &x,
+                   double                        *sums)
+    {
+      using Layout              = MaterialPointLayout<dim>;
+      const double         mass = properties[Layout::mass];
+      const Tensor<1, dim> v    = Layout::get_velocity(properties);
+      const Tensor<2, dim> F    = Layout::get_deformation_gradient(properties);
+      const Tensor<2, dim> E =
+        0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
+      sums[0] += mass;
+      sums[1] += mass * E.norm();
+      double *const first_moment = sums + 2;
+      double *const momentum     = first_moment + dim;
+      double *const angular      = momentum + dim;
+      double *const second       = angular + (dim == 2 ? 1 : 3);
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          first_moment[d] += mass * x[d];
+          momentum[d] += mass * v[d];
+          for (unsigned int e = 0; e < dim; ++e)
+            second[d * dim + e] += mass * x[d] * x[e];
+        }
+      if constexpr (dim == 2)
+        angular[0] += mass * (x[0] * v[1] - x[1] * v[0]);
+      else
+        for (unsigned int a = 0; a < 3; ++a)
+          angular[a] += mass * (x[(a + 1) % 3] * v[(a + 2) % 3] -
+                                x[(a + 2) % 3] * v[(a + 1) % 3]);
+    }
+
+
+
   } // namespace
 
 
@@ -126,7 +165,7 @@ namespace grainmpm
     VectorType                            &momenta,
     VectorType                            *mass_gradients,
     VectorType                            *volumes,
-    std::vector<double>                   *strain_sums) const
+    std::vector<double>                   *shape_sums) const
   {
     using Layout = MaterialPointLayout<dim>;
     if (masses != nullptr)
@@ -136,16 +175,18 @@ namespace grainmpm
       layout.reinit_vector(*mass_gradients, dim);
     if (volumes != nullptr)
       layout.reinit_vector(*volumes, 1 + dim);
-    // The strain of the points of a field that keeps its shape, in this
-    // pass rather than one of its own (which cost 6 % of an explicit run).
-    double *strain_sum = nullptr;
-    if (volumes != nullptr && strain_sums != nullptr)
+    // The strain and motion of the points of a field that keeps its shape,
+    // in this pass rather than one of its own (which cost 6 % of an
+    // explicit run).
+    double *shape_sum = nullptr;
+    if (volumes != nullptr && shape_sums != nullptr &&
+        parameters.contact.shape_gap)
       {
-        strain_sums->assign(2 * field_keeps_shape.size(), 0.);
+        shape_sums->assign(n_shape_sums * field_keeps_shape.size(), 0.);
         if (std::find(field_keeps_shape.begin(),
                       field_keeps_shape.end(),
                       true) != field_keeps_shape.end())
-          strain_sum = strain_sums->data();
+          shape_sum = shape_sums->data();
       }
 
     // The loop with or without masses, mass gradients and volumes
@@ -213,15 +254,10 @@ namespace grainmpm
                 {
                   // (A field that keeps its shape is its grain's.)
                   const unsigned int grain = Layout::get_grain(properties);
-                  if (strain_sum != nullptr && field_keeps_shape[grain])
-                    {
-                      const Tensor<2, dim> F =
-                        Layout::get_deformation_gradient(properties);
-                      const Tensor<2, dim> strain =
-                        0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
-                      strain_sum[2 * grain] += mass;
-                      strain_sum[2 * grain + 1] += mass * strain.norm();
-                    }
+                  if (shape_sum != nullptr && field_keeps_shape[grain])
+                    add_shape_sums<dim>(properties,
+                                        particle->get_location(),
+                                        shape_sum + n_shape_sums * grain);
                   unsigned char reads = 0;
                   cache.for_each_entry(p, [&](const unsigned int e) {
                     reads |= fill_read[cache.slots[e]];

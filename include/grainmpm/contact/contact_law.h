@@ -238,15 +238,32 @@ namespace grainmpm
     }
 
     /**
+     * The normal speed @p turning that a wall with @p condition leaves to a
+     * field (GapEstimator::wall_turning_speed()): all of it at the
+     * unilateral walls (free slip, friction), none at the others.
+     */
+    static double
+    wall_turning(const BoundaryCondition &condition, const double turning)
+    {
+      return condition.type == BoundaryType::free_slip ||
+                 condition.type == BoundaryType::friction ?
+               turning :
+               0.;
+    }
+
+    /**
      * The unilateral wall condition with outward wall normal @p normal
      * applied to @p velocity (classify_wall with the approach @p allowed by
-     * the gap, then apply_state with the wall at rest).
+     * the gap, then apply_state with the wall at rest), to the normal
+     * velocity beyond the speed @p turning that the wall leaves to the
+     * field (wall_turning()).
      */
     static void
     apply_wall(const BoundaryCondition &condition,
                const Tensor<1, dim>    &normal,
                Tensor<1, dim>          &velocity,
-               const double             allowed = 0.);
+               const double             allowed = 0.,
+               const double             turning = 0.);
 
     /** Friction coefficient of a wall with @p condition. */
     static double

@@ -98,12 +98,13 @@ namespace grainmpm
      * Transfer::particles_to_grid()), and the distances from the shapes of
      * the grains that keep theirs, placed at their centres of mass from
      * @p masses (one per slot), if strained little enough according to
-     * @p strain_sums (unstrained_shapes()), for a step of length @p dt: the
-     * data of the allowed approaches until the next call. Collective.
+     * their points' sums @p shape_sums (move_shapes()), for a step of length
+     * @p dt: the data of the allowed approaches until the next call.
+     * Collective.
      */
     void
     compute(const GrainFieldLayout<dim> &layout,
-            const std::vector<double>   &strain_sums,
+            const std::vector<double>   &shape_sums,
             const VectorType            &masses,
             const VectorType            &volumes,
             const double                 dt);
@@ -123,6 +124,17 @@ namespace grainmpm
     wall_allowed_approach(const unsigned int slot,
                           const unsigned int face) const;
 
+    /**
+     * Where the wall at box face @p face reads the surface of slot
+     * @p slot's grain from its shape: the speed towards the face (along its
+     * outward normal) that the rotation of the grain about its centre of
+     * mass gives the node's material; zero elsewhere. The rotation carries
+     * that material along the shape's surface, which it does not bring
+     * nearer the wall: the wall constrains the rest of the normal velocity.
+     */
+    double
+    wall_turning_speed(const unsigned int slot, const unsigned int face) const;
+
   private:
     /**
      * Per field that keeps its shape, the displacement of its centre of
@@ -137,13 +149,22 @@ namespace grainmpm
      * Per field whether it keeps its shape and is strained little enough
      * for the shape to place its surface: the mass-weighted mean of the
      * Green strain |F^T F - I| / 2 of its points times its radius is at
-     * most a tenth of the cell size. @p strain_sums holds this process's
-     * mass and mass-weighted strain per field
-     * (Transfer::particles_to_grid()). Collective.
+     * most a tenth of the cell size. Also the centre of mass and angular
+     * velocity of each such field from its points. @p shape_sums holds this
+     * process's sums per field (Transfer::particles_to_grid()). Collective.
      */
     std::vector<bool>
-    unstrained_shapes(std::vector<double> strain_sums,
-                      const MPI_Comm      communicator) const;
+    move_shapes(std::vector<double> shape_sums, const MPI_Comm communicator);
+
+    /**
+     * Whether the wall at box face @p face reads slot @p slot's surface from
+     * its grain's shape (where that agrees with the fill within half a
+     * cell), and the gap @p gap from the fill and the centroid.
+     */
+    bool
+    wall_reads_shape(const unsigned int slot,
+                     const unsigned int face,
+                     double            &gap) const;
 
     /**
      * The signed distance e of slot @p slot's node from its field's shape
@@ -187,6 +208,15 @@ namespace grainmpm
      */
     std::vector<double>         slot_shape_distances;
     std::vector<Tensor<1, dim>> slot_centroids;
+    /**
+     * Per field that keeps its shape, the centre of mass and the angular
+     * velocity (about z in 2D) of its points; per owned slot on a box face
+     * of such a field, the velocity omega x r that this rotation gives the
+     * centroid of its material (zero elsewhere).
+     */
+    std::vector<Point<dim>>     shape_centres;
+    std::vector<Tensor<1, 3>>   shape_angular_velocities;
+    std::vector<Tensor<1, dim>> slot_turning_velocities;
     double                      dt = 0.;
   };
 } // namespace grainmpm

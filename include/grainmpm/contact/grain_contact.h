@@ -85,18 +85,18 @@ namespace grainmpm
      * the slot volumes and their moments @p volumes, and the shapes of the
      * grains that keep theirs at their centres of mass from @p masses, for
      * a step of length @p dt, those strained little enough according to
-     * their points' strains @p strain_sums (Transfer::particles_to_grid()):
+     * their points' sums @p shape_sums (Transfer::particles_to_grid()):
      * the data of the gap check until the next call
      * (GapEstimator::compute()). Collective.
      */
     void
     compute_gaps(const GrainFieldLayout<dim> &layout,
-                 const std::vector<double>   &strain_sums,
+                 const std::vector<double>   &shape_sums,
                  const VectorType            &masses,
                  const VectorType            &volumes,
                  const double                 dt)
     {
-      gaps.compute(layout, strain_sums, masses, volumes, dt);
+      gaps.compute(layout, shape_sums, masses, volumes, dt);
     }
 
     /**

@@ -55,11 +55,11 @@ namespace grainmpm
      */
     VectorType volumes;
     /**
-     * With the volumes: per field that keeps its shape, the mass and the
-     * mass-weighted strain of its points on this process
+     * With the volumes: per field that keeps its shape, the sums over its
+     * points on this process that give its strain and rigid motion
      * (Transfer::particles_to_grid()).
      */
-    std::vector<double> strain_sums;
+    std::vector<double> shape_sums;
     VectorType          momenta;
     VectorType          mass_gradients;
     VectorType          normals;

@@ -176,11 +176,15 @@ namespace grainmpm
      * The volumes have 1 + dim components per slot: the volume
      * sum_p V_p S_ip and its first moment sum_p V_p (S_ip x_p +
      * l^2 / 3 grad S_ip) (l the half-width of a point's box: the moment of
-     * the box under the hat). With the volumes, if given, @p strain_sums
-     * gets two entries per field: for a field that keeps its shape
-     * (get_field_keeps_shape()) the mass sum_p m_p and the mass-weighted
-     * Green strain sum_p m_p |F_p^T F_p - I| / 2 of its owned points, zero
-     * for the others (not summed over the processes).
+     * the box under the hat). With the volumes, if given, @p shape_sums
+     * gets n_shape_sums entries per field: for a field that keeps its shape
+     * (get_field_keeps_shape()) sums over its owned points (not over the
+     * processes), zero for the others: the mass sum_p m_p, the
+     * mass-weighted Green strain sum_p m_p |F_p^T F_p - I| / 2, the first
+     * moment sum_p m_p x_p (dim entries), the momentum sum_p m_p v_p (dim),
+     * the angular momentum about the origin sum_p m_p x_p x v_p (1 in 2D, 3
+     * in 3D) and the second moment sum_p m_p x_p (x) x_p (dim * dim, row
+     * by row).
      */
     void
     particles_to_grid(const Particles::ParticleHandler<dim> &particle_handler,
@@ -188,7 +192,11 @@ namespace grainmpm
                       VectorType                            &momenta,
                       VectorType                            *mass_gradients,
                       VectorType                            *volumes = nullptr,
-                      std::vector<double> *strain_sums = nullptr) const;
+                      std::vector<double> *shape_sums = nullptr) const;
+
+    /** Entries per field of the shape sums of particles_to_grid(). */
+    static constexpr unsigned int n_shape_sums =
+      2 + 2 * dim + (dim == 2 ? 1 : 3) + dim * dim;
 
     /** v = p / m on owned slots with mass, zero elsewhere. */
     void
