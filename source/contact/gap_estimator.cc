@@ -115,10 +115,13 @@ namespace grainmpm
           }
         else
           {
-            Tensor<1, 3> L;
-            for (unsigned int a = 0; a < 3; ++a)
-              L[a] = angular[a] - (c[(a + 1) % 3] * momentum[(a + 2) % 3] -
-                                   c[(a + 2) % 3] * momentum[(a + 1) % 3]);
+            Tensor<1, dim> L, P;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                L[d] = angular[d];
+                P[d] = momentum[d];
+              }
+            L -= cross_product_3d(c, P);
             Tensor<2, 3> inertia;
             for (unsigned int d = 0; d < 3; ++d)
               for (unsigned int e = 0; e < 3; ++e)
@@ -228,10 +231,7 @@ namespace grainmpm
                   slot_turning_velocities[s] =
                     Tensor<1, dim>({-omega[2] * r[1], omega[2] * r[0]});
                 else
-                  for (unsigned int a = 0; a < 3; ++a)
-                    slot_turning_velocities[s][a] =
-                      omega[(a + 1) % 3] * r[(a + 2) % 3] -
-                      omega[(a + 2) % 3] * r[(a + 1) % 3];
+                  slot_turning_velocities[s] = cross_product_3d(omega, r);
               }
           }
       }

@@ -84,9 +84,11 @@ namespace grainmpm
       if constexpr (dim == 2)
         angular[0] += mass * (x[0] * v[1] - x[1] * v[0]);
       else
-        for (unsigned int a = 0; a < 3; ++a)
-          angular[a] += mass * (x[(a + 1) % 3] * v[(a + 2) % 3] -
-                                x[(a + 2) % 3] * v[(a + 1) % 3]);
+        {
+          const Tensor<1, dim> x_cross_v = cross_product_3d(x, v);
+          for (unsigned int d = 0; d < dim; ++d)
+            angular[d] += mass * x_cross_v[d];
+        }
     }
 
 
